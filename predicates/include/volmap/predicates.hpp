@@ -1,0 +1,72 @@
+// volmap/predicates.hpp — exact geometric predicates (orient2d, orient3d, incircle, insphere).
+//
+// Sign conventions (Shewchuk's):
+//   orient2d(a,b,c)     > 0  iff a,b,c are counter-clockwise.
+//   orient3d(a,b,c,d)   = sign det[a-d; b-d; c-d] > 0 iff d lies below the plane of a,b,c seen
+//                         counter-clockwise from above. VOLMAP tets (v0,v1,v2,v3) have orient3d > 0.
+//   incircle(a,b,c,d)   > 0  iff d is inside the circle through a,b,c (a,b,c counter-clockwise).
+//   insphere(a,b,c,d,e) > 0  iff e is inside the sphere through a,b,c,d (orient3d(a,b,c,d) > 0).
+// Results are exact for every finite double input (no perturbation, degenerate = 0).
+// Precondition of the unchecked scalar functions: all coordinates finite. The *_checked variants
+// and the batch entry point report non-finite input as an error instead of returning a sign.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+
+#include <boost/multiprecision/gmp.hpp>
+
+namespace volmap {
+
+// Exact rational number (GMP backend, expression templates off: safe to store in auto).
+using Rational = boost::multiprecision::number<boost::multiprecision::gmp_rational,
+                                               boost::multiprecision::et_off>;
+
+enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
+
+// Thrown by the checked variants when an input coordinate is NaN or infinite.
+class NonFiniteInput : public std::domain_error {
+ public:
+  using std::domain_error::domain_error;
+};
+
+// Scalar predicates on doubles. Points are arrays of 2 (2D) or 3 (3D) doubles. Return -1, 0, +1.
+int orient2d(const double* a, const double* b, const double* c);
+int orient3d(const double* a, const double* b, const double* c, const double* d);
+int incircle(const double* a, const double* b, const double* c, const double* d);
+int insphere(const double* a, const double* b, const double* c, const double* d, const double* e);
+
+// Same, but throw NonFiniteInput when any coordinate is not finite.
+int orient2d_checked(const double* a, const double* b, const double* c);
+int orient3d_checked(const double* a, const double* b, const double* c, const double* d);
+int incircle_checked(const double* a, const double* b, const double* c, const double* d);
+int insphere_checked(const double* a, const double* b, const double* c, const double* d, const double* e);
+
+// Exact predicates on rational points (arrays of 2 or 3 Rationals), same conventions.
+int orient2d(const Rational* a, const Rational* b, const Rational* c);
+int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rational* d);
+int incircle(const Rational* a, const Rational* b, const Rational* c, const Rational* d);
+int insphere(const Rational* a, const Rational* b, const Rational* c, const Rational* d, const Rational* e);
+
+// Result of a batch orientation pass over a tet mesh.
+struct TetSignCounts {
+  std::size_t positive = 0;
+  std::size_t zero = 0;
+  std::size_t negative = 0;
+  bool ok = true;            // false when the input had non-finite coordinates or out-of-range ids
+  const char* error = "";    // static reason when !ok (no sign is reported then)
+};
+
+// The hot path of every map check. xyz: 3*num_vertices doubles (x,y,z per vertex);
+// tets: 4*num_tets vertex ids (0-based). Writes orient3d(tet) in {-1,0,+1} into signs[t]
+// (signs may be nullptr when only the counts are wanted) and returns the counts.
+// Ids >= num_vertices or non-finite coordinates make the result !ok.
+TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                            std::size_t num_tets, std::int8_t* signs);
+
+// Same on exact rational coordinates (3*num_vertices Rationals).
+TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                            std::size_t num_tets, std::int8_t* signs);
+
+}  // namespace volmap

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# volmap set-up: installs the Debian packages the project needs (skipping what is installed),
+# configures and builds, then runs what was asked:
+#   scripts/setup.sh --demo     build, then run the demo on built-in data
+#   scripts/setup.sh --test     build, then run the whole test suite (what .ci/run calls)
+#   scripts/setup.sh            build only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+MODE=${1:-build}
+BUILD=${VOLMAP_BUILD_DIR:-$ROOT/build}
+JOBS=${VOLMAP_JOBS:-$(nproc)}
+
+PACKAGES=(build-essential cmake pkg-config libeigen3-dev libboost-dev libgmp-dev libopenmesh-dev
+          libtet1.5-dev doctest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev liblbfgspp-dev
+          libtbb-dev libcgal-dev python3-meshio)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD" -j"$JOBS"
+
+case "$MODE" in
+  --demo) exec "$ROOT/scripts/demo.sh" "$BUILD" "${@:2}" ;;
+  --test) exec "$ROOT/scripts/test.sh" "$BUILD" ;;
+  build|--build) ;;
+  *) echo "usage: scripts/setup.sh [--demo|--test]" >&2; exit 2 ;;
+esac

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The whole test suite on an already built tree ($1, default build/):
+#  1. predicates again in a build where the rest of the code uses -ffp-contract=fast -march=native
+#     (proves the predicates' own flags protect them);
+#  2. install into a scratch prefix and build/run the outside consumer project against it;
+#  3. the main ctest run (default labels; set VOLMAP_LONG_TESTS=1 to include tests labelled long).
+# The main ctest summary is printed last so CI reads it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+BUILD=${1:-$ROOT/build}
+JOBS=${VOLMAP_JOBS:-$(nproc)}
+
+echo "== predicates under -ffp-contract=fast -march=native for the rest of the code"
+FAST=$BUILD-fastmath
+cmake -S "$ROOT" -B "$FAST" -DCMAKE_BUILD_TYPE=Release -DVOLMAP_BUILD_LIB=OFF -DVOLMAP_BUILD_BENCH=OFF \
+      -DCMAKE_CXX_FLAGS="-ffp-contract=fast -march=native" >/dev/null
+cmake --build "$FAST" -j"$JOBS" >/dev/null
+ctest --test-dir "$FAST" -j"$JOBS" --output-on-failure -LE long | tail -n 3
+
+echo "== install + outside consumer project"
+PREFIX=$BUILD-install
+rm -rf "$PREFIX"
+cmake --install "$BUILD" --prefix "$PREFIX" >/dev/null
+cmake -S "$ROOT/tests/consumer" -B "$BUILD-consumer" -DCMAKE_PREFIX_PATH="$PREFIX" >/dev/null
+cmake --build "$BUILD-consumer" -j"$JOBS" >/dev/null
+"$BUILD-consumer/volmap_consumer"
+
+echo "== main test suite"
+LABELS=(-LE long)
+[ "${VOLMAP_LONG_TESTS:-0}" = 1 ] && LABELS=()
+ctest --test-dir "$BUILD" -j"$JOBS" --output-on-failure "${LABELS[@]}"

@@ -1,0 +1,40 @@
+// Helpers shared by tests: where the real data lives (../shared/data, read in place, never copied)
+// and where the built tools are. Tests that need data call data_file() and skip when it is empty.
+#pragma once
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace volmap_test {
+
+// Root of ../shared/data, overridable with the VOLMAP_DATA environment variable. Empty when absent.
+inline std::filesystem::path data_root() {
+  const char* env = std::getenv("VOLMAP_DATA");
+  std::filesystem::path root = env && *env ? std::filesystem::path(env) : std::filesystem::path(VOLMAP_DATA_DIR);
+  std::error_code ec;
+  return std::filesystem::is_directory(root, ec) ? root : std::filesystem::path();
+}
+
+// Full path of a data file relative to the data root, or empty when the data (or the file) is absent.
+inline std::filesystem::path data_file(const std::string& relative) {
+  const auto root = data_root();
+  if (root.empty()) return {};
+  auto p = root / relative;
+  std::error_code ec;
+  return std::filesystem::exists(p, ec) ? p : std::filesystem::path();
+}
+
+// Path of a built tool (build/bin/volmap-*).
+inline std::filesystem::path tool(const std::string& name) {
+  return std::filesystem::path(VOLMAP_BIN_DIR) / name;
+}
+
+}  // namespace volmap_test
+
+// Skip the current test case with a visible message when the shared data is missing.
+#define VOLMAP_REQUIRE_DATA(path_var, relative)                                      \
+  const auto path_var = volmap_test::data_file(relative);                            \
+  if (path_var.empty()) {                                                            \
+    MESSAGE("skipped: ../shared/data/" << (relative) << " is absent");               \
+    return;                                                                          \
+  }
