@@ -10,8 +10,9 @@
 //      product of the algorithms below under- or overflows): if all Two-Diff tails are zero the
 //      rounded differences are exact and one expansion evaluation gives the sign; otherwise orient2d /
 //      orient3d try stage B (exact minors of the rounded differences, accept if |estimate| ≥ errB·
-//      permanent) and then the exact expansion of the raw-coordinate determinant det[p_i 1]; incircle
-//      and insphere with nonzero tails go to L4.
+//      permanent), stage C (first-order tail terms, accept if |estimate| ≥ errC·permanent +
+//      resulterrbound·|B|) and then (stage D) the exact expansion of the raw-coordinate determinant
+//      det[p_i 1]; incircle and insphere with nonzero tails go to L4.
 //   L4 exact integers (exact.cpp) for inputs outside the safe range.
 // Reference: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
 // Predicates", DCG 18 (1997). This TU must be compiled without FP contraction (-ffp-contract=off).
@@ -35,6 +36,9 @@ constexpr double kO2ErrA = (3.0 + 24.0 * kEps) * kEps;
 constexpr double kO2ErrB = (2.0 + 12.0 * kEps) * kEps;
 constexpr double kO3ErrA = (7.0 + 64.0 * kEps) * kEps;
 constexpr double kO3ErrB = (3.0 + 28.0 * kEps) * kEps;
+constexpr double kO3ErrC = (26.0 + 288.0 * kEps) * kEps * kEps;
+constexpr double kO2ErrC = (9.0 + 64.0 * kEps) * kEps * kEps;
+constexpr double kResultErr = (3.0 + 8.0 * kEps) * kEps;
 constexpr double kIcErrA = (10.0 + 104.0 * kEps) * kEps;
 constexpr double kIsErrA = (16.0 + 232.0 * kEps) * kEps;
 // L1 static filter constant (CGAL Static_filters/Orientation_3, geogram PCK, TetGen/HXT).
@@ -78,8 +82,12 @@ int orient2d_exact_tail(const double* a, const double* b, const double* c, doubl
   double e[4];
   const int n = cross_diff(acx, bcy, acy, bcx, e);
   if (acxt == 0.0 && acyt == 0.0 && bcxt == 0.0 && bcyt == 0.0) return expansion_sign(e, n);
-  const double est = expansion_estimate(e, n);
+  double est = expansion_estimate(e, n);
   if (std::fabs(est) >= kO2ErrB * permanent) return sign_of(est);
+  // Stage C: first-order tail terms.
+  const double errbound = kO2ErrC * permanent + kResultErr * std::fabs(est);
+  est += (acx * bcyt + bcy * acxt) - (acy * bcxt + bcx * acyt);
+  if (std::fabs(est) >= errbound) return sign_of(est);
   // Exact: det[p_i 1] = ab − ac + bc with xy-minors of the raw coordinates.
   double ab[4], ac[4], bc[4], t8[8], r[12];
   const int lab = cross_diff(a[0], b[1], a[1], b[0], ab);
@@ -168,8 +176,14 @@ int orient3d_exact_tail(const double* a, const double* b, const double* c, const
   if (adxt == 0.0 && adyt == 0.0 && adzt == 0.0 && bdxt == 0.0 && bdyt == 0.0 && bdzt == 0.0 && cdxt == 0.0 &&
       cdyt == 0.0 && cdzt == 0.0)
     return expansion_sign(e, n);
-  const double est = expansion_estimate(e, n);
+  double est = expansion_estimate(e, n);
   if (std::fabs(est) >= kO3ErrB * permanent) return sign_of(est);
+  // Stage C: first-order tail terms (Shewchuk 1997, orient3dadapt).
+  const double errbound = kO3ErrC * permanent + kResultErr * std::fabs(est);
+  est += (adz * ((bdx * cdyt + cdy * bdxt) - (bdy * cdxt + cdx * bdyt)) + adzt * (bdx * cdy - bdy * cdx)) +
+         (bdz * ((cdx * adyt + ady * cdxt) - (cdy * adxt + adx * cdyt)) + bdzt * (cdx * ady - cdy * adx)) +
+         (cdz * ((adx * bdyt + bdy * adxt) - (ady * bdxt + bdx * adyt)) + cdzt * (adx * bdy - ady * bdx));
+  if (std::fabs(est) >= errbound) return sign_of(est);
   return orient3d_raw_exact(a, b, c, d);
 }
 
