@@ -499,18 +499,15 @@ TetSignCounts fail(const char* reason) {
 TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
                             std::size_t num_tets, std::int8_t* signs) {
   const MeshCensus mesh = census(xyz, num_vertices);
-  // Vertex ids are uint32; more than 2^31 − 1 vertices is not supported by the batch path.
-  if (num_vertices > std::size_t(INT32_MAX)) return fail("more than 2^31 - 1 vertices");
-  const std::int32_t num_vertices_i32 = static_cast<std::int32_t>(num_vertices);
   if (!mesh.finite) return fail("non-finite vertex coordinate");
   // L1 is valid when the mesh is safe and every extent is in [1e-97, 1e102) (CGAL's guards).
   bool use_static = mesh.safe;
   for (int k = 0; k < 3; ++k) use_static &= (mesh.extent[k] >= 1e-97 && mesh.extent[k] < 1e102);
   const double static_bound =
       use_static ? kO3Static * mesh.extent[0] * mesh.extent[1] * mesh.extent[2] : HUGE_VAL;
-  // Chunks of kChunk tets (ids validated while hot in cache): pass 1 is the bare determinant + the L1
-  // compare, with no call and no loop-carried state; pass 2 resolves the undecided (0) entries through
-  // the guarded layers and counts.
+  // Chunks of kChunk tets: pass 1 validates the ids (running max, no pointer is formed from a bad id)
+  // and computes the bare determinant + the L1 compare, with no call in the loop; pass 2 counts
+  // branch-free and resolves the undecided (0) entries through the guarded layers.
   constexpr std::size_t kChunk = 2048;
   std::int8_t chunk_signs[kChunk];
   std::size_t positive = 0, negative = 0;
@@ -518,16 +515,13 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
     const std::size_t count = std::min(kChunk, num_tets - first);
     std::int8_t* out = signs ? signs + first : chunk_signs;
     const std::uint32_t* chunk = tets + 4 * first;
-    // Validate the chunk's ids while they are hot in cache (vectorisable max), then use them unchecked.
-    // (signed 32-bit compares vectorise on plain SSE2; ids ≥ 2^31 are negative and rejected too)
-    int bad = 0;
-    for (std::size_t i = 0; i < 4 * count; ++i) {
-      const std::int32_t id = static_cast<std::int32_t>(chunk[i]);
-      bad |= (id < 0) | (id >= num_vertices_i32);
-    }
-    if (bad) return fail("tet vertex id out of range");
+    std::uint32_t max_id = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const std::uint32_t* v = chunk + 4 * t;
+      const std::uint32_t m01 = v[0] > v[1] ? v[0] : v[1], m23 = v[2] > v[3] ? v[2] : v[3];
+      const std::uint32_t m = m01 > m23 ? m01 : m23;
+      max_id = m > max_id ? m : max_id;
+      if (m >= num_vertices) break;  // reported after the loop, before any pointer is formed
       const double* a = xyz + 3 * std::size_t(v[0]);
       const double* b = xyz + 3 * std::size_t(v[1]);
       const double* c = xyz + 3 * std::size_t(v[2]);
@@ -540,6 +534,7 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
       const int s = (det > static_bound) - (det < -static_bound);
       out[t] = static_cast<std::int8_t>(s);
     }
+    if (max_id >= num_vertices) return fail("tet vertex id out of range");
     // Branch-free (vectorised) count; only chunks with undecided entries take the resolve loop.
     std::size_t pos = 0, neg = 0;
     for (std::size_t t = 0; t < count; ++t) {
