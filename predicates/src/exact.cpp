@@ -271,6 +271,8 @@ int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rati
     const int s = detail::orient3d_rational_filter(approx[0], approx[1], approx[2], approx[3]);
     if (s != 0) return s;
   }
+  for (int k = 0; k < 3; ++k)  // zero-column shortcut: a whole translated column is zero
+    if (a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) return 0;
   Mpz m[4][4];
   for (int i = 0; i < 4; ++i) {
     Mpz h[4];
