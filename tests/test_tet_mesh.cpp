@@ -5,6 +5,7 @@
 #include <volmap/boundary_surface.hpp>
 #include <volmap/error.hpp>
 #include <volmap/generate.hpp>
+#include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/tet_mesh.hpp>
 #include <volmap/topology.hpp>
@@ -326,28 +327,72 @@ TEST_CASE("memory: core bytes per tet within budget on a grid") {
   CHECK(m.label_bytes() == 0);  // all-zero labels are not stored
 }
 
-TEST_CASE("G1 meshes build and match analyze_topology") {
+namespace {
+// Builds a real mesh and cross-checks it against analyze_topology, the boundary surface and
+// to_data(); returns the topology report.
+TopologyReport check_real_mesh(const std::filesystem::path& path) {
+  INFO(path.string());
+  const TetMeshData d = read_tet_mesh(path.string());
+  const TopologyReport r = analyze_topology(d);
+  const TetMesh m(d);
+  const InvariantReport inv = m.check_invariants();
+  INFO(inv.problem);
+  CHECK(inv.ok);
+  CHECK(r.boundary_half_faces.size() == m.boundary_half_faces().size());
+  for (std::size_t k = 0; k < r.boundary_half_faces.size(); ++k)
+    CHECK(r.boundary_half_faces[k] == m.boundary_half_faces()[k].idx());
+  const BoundarySurface s = extract_boundary_surface(m);
+  CHECK(s.complete());
+  CHECK(long(s.mesh.n_vertices()) - long(s.mesh.n_edges()) + long(s.mesh.n_faces()) == r.boundary_euler);
+  CHECK(s.mesh.n_vertices() == r.num_boundary_vertices);
+  const TetMeshData back = m.to_data();
+  CHECK(back.tets == d.tets);
+  CHECK(back.xyz == d.xyz);
+  return r;
+}
+}  // namespace
+
+TEST_CASE("G1 meshes build, are genus-0 balls, and agree with analyze_topology") {
   VOLMAP_REQUIRE_DATA(dir, "volmap/G1");
   std::size_t count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".mesh") continue;
-    TetMeshData d;
-    REQUIRE(mesh_test::read_medit_for_test(entry.path().string(), d));
+    const TopologyReport r = check_real_mesh(entry.path());
     INFO(entry.path().filename().string());
-    const TetMesh m(d);
-    CHECK(m.check_invariants().ok);
-    const TopologyReport r = analyze_topology(d);
-    CHECK(r.boundary_half_faces.size() == m.boundary_half_faces().size());
     CHECK(r.boundary_genus_zero);
     CHECK(r.single_tet_component);
-    CHECK(r.num_tet_components == 1);
-    const BoundarySurface s = extract_boundary_surface(m);
-    CHECK(s.complete());
-    CHECK(long(s.mesh.n_vertices()) - long(s.mesh.n_edges()) + long(s.mesh.n_faces()) == 2);
-    const TetMeshData back = m.to_data();
-    CHECK(back.tets == d.tets);
-    CHECK(back.xyz == d.xyz);
+    CHECK(r.single_boundary_component);
+    CHECK(r.boundary_closed);
     ++count;
   }
-  CHECK(count >= 20);
+  CHECK(count == 20);
+}
+
+TEST_CASE("viewer samples and standalone tet meshes (either orientation) build") {
+  VOLMAP_REQUIRE_DATA(root, "volmap/viewer-samples");
+  const char* files[] = {"volmap/viewer-samples/bimba_input.mesh", "volmap/viewer-samples/bimba_output.mesh",
+                         "volmap/viewer-samples/bunny_input.mesh", "volmap/viewer-samples/duck_input.mesh",
+                         "volmap/viewer-samples/hand_aigerman.mesh", "volmap/viewer-samples/max.mesh",
+                         "volmap/viewer-samples/bimba_object.vtk", "tetmeshes/cinolib/sphere.mesh",
+                         "tetmeshes/libigl_tutorial/bunny.mesh", "tetmeshes/robustpolycube/B0.mesh",
+                         "tetmeshes/robustpolycube/pente.mesh", "tetmeshes/stardecompositionmaps/open.vtk"};
+  for (const char* f : files) {
+    const auto p = volmap_test::data_file(f);
+    if (p.empty()) {
+      MESSAGE("skipped: " << f << " is absent");
+      continue;
+    }
+    const TopologyReport r = check_real_mesh(p);
+    INFO(f);
+    CHECK(r.boundary_genus_zero);
+    CHECK(r.single_tet_component);
+  }
+}
+
+TEST_CASE("negative: robustpolycube_NY_2 has a genus-1 boundary") {
+  VOLMAP_REQUIRE_DATA(p, "negative/robustpolycube_NY_2.mesh");
+  const TopologyReport r = check_real_mesh(p);
+  CHECK(r.boundary_genus_defined);
+  CHECK(r.boundary_genus == 1);
+  CHECK_FALSE(r.boundary_genus_zero);
 }
