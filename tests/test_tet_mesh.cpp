@@ -319,6 +319,26 @@ TEST_CASE("boundary surface reports faces OpenMesh refuses (pinched edge)") {
   for (HalfFaceId h : s.rejected_half_faces) CHECK(m.half_face_is_boundary(h));
 }
 
+TEST_CASE("pinched vertex: vertex_star is the face-connected cluster, vertex_tets lists all") {
+  const TetMeshData d = generate_kuhn_grid(2, 2, 2, [](std::size_t i, std::size_t j, std::size_t k) {
+    return (i == 0 && j == 0 && k == 0) || (i == 1 && j == 1 && k == 1);
+  });
+  const TetMesh m(d);
+  CHECK(m.check_invariants(true).ok);
+  VertexId centre;
+  for (std::uint32_t v = 0; v < m.num_vertices(); ++v)
+    if (m.vertex_position(VertexId(v))[0] == 1.0 && m.vertex_position(VertexId(v))[1] == 1.0 &&
+        m.vertex_position(VertexId(v))[2] == 1.0)
+      centre = VertexId(v);
+  REQUIRE(centre.is_valid());
+  std::vector<TetId> star;
+  m.vertex_star(centre, star);
+  CHECK(star.size() == 6);  // the 6 Kuhn tets of one cube (all hold both ends of its main diagonal)
+  CHECK(m.vertex_tets(centre).size() == 12);
+  m.vertex_star(centre, star);  // same answer with the cache built
+  CHECK(star.size() == 6);
+}
+
 TEST_CASE("memory: core bytes per tet within budget on a grid") {
   const TetMesh m(generate_kuhn_grid(10, 10, 10));
   const double per_tet = double(m.core_bytes()) / double(m.num_tets());

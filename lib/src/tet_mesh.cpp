@@ -134,11 +134,6 @@ TetMeshData TetMesh::to_data() const {
 
 void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
   out.clear();
-  if (vt_cache_.version == topology_version_) {
-    const auto s = vertex_tets(v);
-    out.assign(s.begin(), s.end());
-    return;
-  }
   const std::uint32_t h0 = v2h_[v.idx()];
   if (h0 == kNone) return;
   out.push_back(TetId(h0 >> 2));

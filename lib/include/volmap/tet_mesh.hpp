@@ -126,8 +126,10 @@ class TetMesh {
   }
   HalfFaceId vertex_half_face(VertexId v) const { return HalfFaceId(v2h_[v.idx()]); }
   bool vertex_is_boundary(VertexId v) const { return opp_[v2h_[v.idx()]] == kBoundary; }
-  // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity).
-  // Uses the vertex->tets cache when it is current, else walks face neighbours around v.
+  // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity), found by
+  // walking face neighbours around v from v2h (no cache involved). On a non-manifold ("pinched")
+  // vertex, whose tets are not connected through faces containing v, this is only the cluster
+  // holding v2h[v]; vertex_tets(v) (cache) lists all tets containing v.
   void vertex_star(VertexId v, std::vector<TetId>& out) const;
 
   // ---- raw arrays (read-only; layout in the convention block) -------------------------------
@@ -163,6 +165,8 @@ class TetMesh {
   void build_caches() const;  // all of them, now
   void clear_caches() const;
   // Edge ids (cache): e_of_tet[6t+k] for local edge kTetEdge[k], edge_v[2e], one (6t+k) per edge.
+  // An id names one edge star (fan of face-connected tets): on a mesh with a pinched (non-manifold)
+  // edge, that vertex pair gets one id per fan. analyze_topology() reports such meshes.
   std::size_t num_edges() const;
   EdgeId tet_edge(TetId t, int k) const;
   std::array<VertexId, 2> edge_vertices(EdgeId e) const;
