@@ -246,6 +246,13 @@ TEST_CASE("edge stars and edge cache vs brute force; Euler characteristic of a b
     }
   }
   CHECK(std::count(seen_edge.begin(), seen_edge.end(), 1) == long(m.num_edges()));
+  for (std::uint32_t e = 0; e < m.num_edges(); ++e) {  // stars by edge id
+    const auto ev = m.edge_vertices(EdgeId(e));
+    std::vector<std::uint32_t> star;
+    m.edge_star(EdgeId(e), [&](TetId s) { star.push_back(s.idx()); });
+    std::sort(star.begin(), star.end());
+    CHECK(star == edges.at(std::minmax(ev[0].idx(), ev[1].idx())));
+  }
   CHECK_FALSE(m.find_edge(VertexId(0), VertexId(std::uint32_t(m.num_vertices() - 1)), nullptr, nullptr).is_valid());
 }
 

@@ -295,6 +295,12 @@ TEST_CASE("properties: value semantics, detach, survive a moved mesh") {
   const TetMesh copy = moved;  // a copy has no properties attached
   CHECK(copy.property_registry().size(ElementKind::Vertex) == 0);
   require_ok(copy);
+  TetMesh other(generate_kuhn_grid(2, 1, 1));
+  TetProperty<int> on_other(other, 4);
+  on_other[TetId(0)] = 8;
+  other = copy;  // assignment: properties stay attached, reset to defaults at the new size
+  CHECK(on_other.size() == other.num_tet_slots());
+  CHECK(on_other[TetId(0)] == 4);
 }
 
 TEST_CASE("randomized edits: splits and flips with invariants and exact positivity after each") {

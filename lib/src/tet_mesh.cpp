@@ -38,9 +38,12 @@ TetMesh::TetMesh(const TetMesh& o)
 TetMesh& TetMesh::operator=(const TetMesh& o) {
   if (this == &o) return *this;
   TetMesh copy(o);
-  copy.properties_ = properties_;  // our properties stay attached to us
+  copy.properties_ = properties_;  // our properties stay attached to us...
   *this = std::move(copy);
   ++topology_version_;
+  // ...and are reset to their default values at the new sizes (their old entries meant other elements).
+  properties_->notify_compact(ElementKind::Vertex, {}, num_vertex_slots());
+  properties_->notify_compact(ElementKind::Tet, {}, num_tet_slots());
   return *this;
 }
 
@@ -51,7 +54,7 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
   if (data.xyz.size() % 3 != 0) bad("vertex coordinate array size " + std::to_string(data.xyz.size()) + " is not a multiple of 3");
   if (data.tets.size() % 4 != 0) bad("tet array size " + std::to_string(data.tets.size()) + " is not a multiple of 4");
   const std::size_t nv = data.num_vertices(), nt = data.num_tets();
-  if (nt > (std::size_t(1) << 30)) bad("too many tets (" + std::to_string(nt) + " > 2^30)");
+  if (nt > detail::kMaxGroupedTets) bad("too many tets (" + std::to_string(nt) + " > 2^29)");
   if (nv >= kNone) bad("too many vertices (" + std::to_string(nv) + ")");
   if (!data.vertex_labels.empty() && data.vertex_labels.size() != nv)
     bad("vertex label count " + std::to_string(data.vertex_labels.size()) + " != vertex count " + std::to_string(nv));
@@ -73,19 +76,20 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
   opp_.assign(4 * nt, kBoundary);
   detail::group_faces(
       tv, nt, nv, [](std::size_t) { return false; },
-      [&](std::uint32_t m, const detail::FaceEntry* g, std::size_t n) {
+      [&](std::uint32_t m, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
         if (n == 1) return;
-        const std::uint32_t a = std::uint32_t(g[0].key >> 32), b = std::uint32_t(g[0].key);
+        const std::uint32_t a = std::uint32_t(keys[0] >> 32), b = std::uint32_t(keys[0]);
         if (n > 2) {
           std::string tets;
-          for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(g[k].hf >> 2);
+          for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(detail::hf_of(g[k]) >> 2);
           bad("non-manifold face " + triple(m, a, b) + " is shared by " + std::to_string(n) + " tets (" + tets + ")");
         }
-        if (g[0].parity == g[1].parity)
-          bad("inconsistent orientation: tets " + std::to_string(g[0].hf >> 2) + " and " + std::to_string(g[1].hf >> 2) +
+        const std::uint32_t h0 = detail::hf_of(g[0]), h1 = detail::hf_of(g[1]);
+        if (detail::parity_of(g[0]) == detail::parity_of(g[1]))
+          bad("inconsistent orientation: tets " + std::to_string(h0 >> 2) + " and " + std::to_string(h1 >> 2) +
               " share face " + triple(m, a, b) + " with the same winding");
-        opp_[g[0].hf] = g[1].hf;
-        opp_[g[1].hf] = g[0].hf;
+        opp_[h0] = h1;
+        opp_[h1] = h0;
       });
   v2h_.assign(nv, kNone);
   for (std::size_t h = 0; h < 4 * nt; ++h) v2h_[tv_[h]] = std::uint32_t((h & ~std::size_t(3)) | ((h + 1) & 3));

@@ -65,11 +65,12 @@ class TetMesh {
 
   TetMesh();
   // Builds the half-face structure in linear time. Throws Error(BadInput) naming the offending
-  // tet/face/vertex for: sizes not multiples of 3/4, ids out of range, a tet repeating a vertex,
+  // tet/face/vertex for: sizes not multiples of 3/4, more than 2^29 tets, ids out of range, a tet repeating a vertex,
   // a face shared by more than two tets, matched faces with equal winding (inconsistent
   // orientation), a vertex used by no tet.
   explicit TetMesh(const TetMeshData& data);
-  TetMesh(const TetMesh& other);             // copies geometry/topology; properties stay with `other`
+  TetMesh(const TetMesh& other);  // copies geometry/topology; properties stay with `other`
+  // Properties attached to *this stay attached, reset to their default values at the new sizes.
   TetMesh& operator=(const TetMesh& other);
   TetMesh(TetMesh&&) noexcept;
   TetMesh& operator=(TetMesh&&) noexcept;
