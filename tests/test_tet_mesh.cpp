@@ -246,6 +246,10 @@ TEST_CASE("edge stars and edge cache vs brute force; Euler characteristic of a b
     }
   }
   CHECK(std::count(seen_edge.begin(), seen_edge.end(), 1) == long(m.num_edges()));
+  const Span<VertexId> ev_all = m.edge_vertex_array();
+  REQUIRE(ev_all.size() == 2 * m.num_edges());
+  for (std::uint32_t e = 0; e < m.num_edges(); ++e)
+    CHECK(edges.count(std::minmax(ev_all[2 * e].idx(), ev_all[2 * e + 1].idx())) == 1);
   for (std::uint32_t e = 0; e < m.num_edges(); ++e) {  // stars by edge id
     const auto ev = m.edge_vertices(EdgeId(e));
     std::vector<std::uint32_t> star;

@@ -159,6 +159,12 @@ TEST_CASE("edge split: interior and boundary edges, every tet of the star") {
       ++split;
     }
   CHECK(split == 2);
+  // By vertex pair: the edge (0, 1) of the grid corner, then it is gone.
+  const double mid[3] = {0.5, 0.0, 0.0};
+  const VertexId w = m.split_edge(VertexId(0), VertexId(1), mid);
+  require_ok(m);
+  CHECK(star_positive(m, w));
+  CHECK_THROWS_AS(m.split_edge(VertexId(0), VertexId(1), mid), Error);
   CHECK(analyze_topology(m.to_data()).boundary_genus_zero);
 }
 

@@ -247,6 +247,10 @@ std::array<VertexId, 2> TetMesh::edge_vertices(EdgeId e) const {
   ensure_edge_cache();
   return {edge_cache_.edge_v[2 * std::size_t(e.idx())], edge_cache_.edge_v[2 * std::size_t(e.idx()) + 1]};
 }
+Span<VertexId> TetMesh::edge_vertex_array() const {
+  ensure_edge_cache();
+  return {edge_cache_.edge_v.data(), edge_cache_.edge_v.size()};
+}
 std::pair<TetId, int> TetMesh::edge_tet(EdgeId e) const {
   ensure_edge_cache();
   const std::uint32_t x = edge_cache_.edge_tet[e.idx()];
@@ -402,6 +406,15 @@ VertexId TetMesh::split_edge(TetId t0, int a0, int b0, const double p[3]) {
   refresh_v2h(scratch_.data() + 3 * k, 2 * k);
   edited();
   return VertexId(w);
+}
+
+VertexId TetMesh::split_edge(VertexId va, VertexId vb, const double p[3]) {
+  if (va.idx() >= num_vertex_slots() || vb.idx() >= num_vertex_slots() || !vertex_is_live(va) || !vertex_is_live(vb))
+    failed("split_edge: vertex not live");
+  int a = -1, b = -1;
+  const TetId t = find_edge(va, vb, &a, &b);
+  if (!t.is_valid()) failed("split_edge: no edge (" + std::to_string(va.idx()) + "," + std::to_string(vb.idx()) + ")");
+  return split_edge(t, a, b, p);
 }
 
 VertexId TetMesh::split_face(HalfFaceId h, const double p[3]) {

@@ -171,6 +171,8 @@ class TetMesh {
   std::size_t num_edges() const;
   EdgeId tet_edge(TetId t, int k) const;
   std::array<VertexId, 2> edge_vertices(EdgeId e) const;
+  // All edges as 2*num_edges() vertex ids (edge e = entries 2e, 2e+1), e.g. for Laplacian assembly.
+  Span<VertexId> edge_vertex_array() const;
   // One (tet, local edge k) holding e.
   std::pair<TetId, int> edge_tet(EdgeId e) const;
   template <class F>
@@ -178,6 +180,7 @@ class TetMesh {
     const auto tk = edge_tet(e);
     return edge_star(tk.first, kTetEdge[tk.second][0], kTetEdge[tk.second][1], std::forward<F>(f));
   }
+  // Spans returned by the cache accessors below stay valid until the next edit or clear_caches().
   // Vertex -> tets CSR (cache), each list sorted by tet id.
   Span<TetId> vertex_tets(VertexId v) const;
   // Boundary half-faces, sorted (cache).
@@ -198,6 +201,8 @@ class TetMesh {
   // p is positive iff p is strictly on vertex j's side (orient3d is affine in each argument).
   // Splits the edge (local a, local b) of t: every tet of its star becomes two.
   VertexId split_edge(TetId t, int a, int b, const double p[3]);
+  // Same for the edge (va, vb); throws Error(Failed) when there is no such edge.
+  VertexId split_edge(VertexId va, VertexId vb, const double p[3]);
   // Splits face h: each tet on it (1 on the boundary, else 2) becomes three.
   VertexId split_face(HalfFaceId h, const double p[3]);
   // Splits tet t into four around p.
