@@ -178,6 +178,14 @@ void TetMesh::ensure_edge_cache() const {
   c.e_of_tet.assign(6 * nts, EdgeId::kInvalid);
   c.edge_v.clear();
   c.edge_tet.clear();
+  // Euler (V - E + F - T = 1 for a ball, F = (4T + boundary faces)/2) gives the edge count up to a
+  // few: reserve it so the cache carries no growth slack.
+  std::size_t boundary_faces = 0;
+  for (std::size_t h = 0; h < opp_.size(); ++h) boundary_faces += opp_[h] == kBoundary;
+  boundary_faces -= 4 * free_tets_.size();
+  const std::size_t expect = num_live_vertices_ + num_live_tets_ + boundary_faces / 2 + 16;
+  c.edge_v.reserve(2 * expect);
+  c.edge_tet.reserve(expect);
   std::uint32_t ne = 0;
   for (std::size_t t = 0; t < nts; ++t) {
     if (tv_[4 * t] == kNone) continue;
