@@ -1,6 +1,7 @@
 // analyze_topology on good and deliberately broken raw arrays (known counts as oracles).
 #include <doctest/doctest.h>
 
+#include <volmap/boundary_faces.hpp>
 #include <volmap/error.hpp>
 #include <volmap/generate.hpp>
 #include <volmap/tet_mesh.hpp>
@@ -230,5 +231,32 @@ TEST_CASE("random tet soups: analyze_topology agrees with a std::map oracle") {
     CHECK(r.num_overshared_edges == over);
     CHECK(r.boundary_euler == long(bverts.size()) - long(bedges.size()) + long(boundary));
     CHECK(r.num_tet_components == roots.size());
+  }
+}
+
+TEST_CASE("boundary half-faces agree with the IO module's boundary_half_faces (independent code)") {
+  std::mt19937 rng(11);
+  std::vector<TetMeshData> cases = {generate_kuhn_grid(3, 2, 4),
+                                    generate_kuhn_grid(3, 3, 1, [](std::size_t i, std::size_t j, std::size_t) { return !(i == 1 && j == 1); })};
+  for (int round = 0; round < 100; ++round) {  // soups without repeated ids in a tet
+    TetMeshData d;
+    const std::uint32_t nv = 4 + rng() % 8;
+    d.xyz.assign(3 * nv, 0.0);
+    for (std::size_t t = 0, nt = 1 + rng() % 10; t < nt; ++t) {
+      std::uint32_t p[4];
+      do {
+        for (auto& x : p) x = rng() % nv;
+      } while (p[0] == p[1] || p[0] == p[2] || p[0] == p[3] || p[1] == p[2] || p[1] == p[3] || p[2] == p[3]);
+      d.tets.insert(d.tets.end(), p, p + 4);
+    }
+    cases.push_back(d);
+  }
+  for (const TetMeshData& d : cases) {
+    const TopologyReport r = analyze_topology(d);
+    const std::vector<std::uint64_t> io = boundary_half_faces(d);
+    REQUIRE(io.size() == r.boundary_half_faces.size());
+    for (std::size_t k = 0; k < io.size(); ++k) CHECK(io[k] == r.boundary_half_faces[k]);
+    const std::vector<std::uint32_t> bv = boundary_vertex_ids(d);
+    CHECK(bv.size() == r.num_boundary_vertices);
   }
 }
