@@ -417,5 +417,5 @@ TEST_CASE("randomized edits: splits and flips with invariants and exact positivi
 }
 
 TEST_SUITE("long") {
-  TEST_CASE("randomized edits, long: 40000 edits on a 5^3 grid") { run_random_edits(5, 40000, 987, 2000); }
+  TEST_CASE("randomized edits long run with 40000 edits on a 5^3 grid") { run_random_edits(5, 40000, 987, 2000); }
 }
