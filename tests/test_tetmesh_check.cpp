@@ -136,7 +136,7 @@ TEST_CASE("non-manifold and disconnected inputs are reported, not thrown") {
   r = check_tet_mesh(f);
   CHECK(r.topology.num_nonmanifold_faces == 1);
   CHECK_FALSE(r.check("manifold").passed);
-
+  CHECK(r.check("self_intersections").passed);  // the third tet lies inside the second: nested, not crossing
 
   // Two separate tets, and an unused vertex.
   TetMeshData d = unit_tet();
