@@ -6,16 +6,16 @@
 // vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex order, tet order and
 // labels kept), re-checks the written mesh and reports it; refuses (exit 1, nothing written) when
 // the signs are mixed. A mesh already in the VOLMAP convention is written unchanged.
-// A surface (.off/.obj/.stl/.ply) gets the five surface checks instead (no orientation/volume).
+// A surface (.off/.obj/.stl/.ply, read by read_surface) gets the five surface checks instead
+// (check_surface: no orientation/volume).
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
 #include "tool_common.hpp"
 
 #include <volmap/io.hpp>
+#include <volmap/io_surface.hpp>
 #include <volmap/tetmesh_checks.hpp>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -35,30 +35,6 @@ std::string lower_extension(const std::string& path) {
 }
 
 bool is_surface_extension(const std::string& ext) { return ext == "off" || ext == "obj" || ext == "stl" || ext == "ply"; }
-
-// Surface as flat triangle arrays (OpenMesh triangulates polygons on read, keeping vertex order).
-void read_surface_triangles(const std::string& path, std::vector<double>& xyz, std::vector<std::uint32_t>& tris) {
-  struct Traits : OpenMesh::DefaultTraits {
-    typedef OpenMesh::Vec3d Point;
-  };
-  OpenMesh::TriMesh_ArrayKernelT<Traits> mesh;
-  OpenMesh::IO::Options opt;
-  std::FILE* probe = std::fopen(path.c_str(), "rb");
-  if (!probe) throw volmap::Error(volmap::ErrorKind::Io, path, 0, "cannot open file");
-  std::fclose(probe);
-  if (!OpenMesh::IO::read_mesh(mesh, path, opt))
-    throw volmap::Error(volmap::ErrorKind::BadInput, path, 0, "cannot read surface (OpenMesh reader failed)");
-  xyz.clear();
-  tris.clear();
-  xyz.reserve(3 * mesh.n_vertices());
-  for (const auto& v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    xyz.insert(xyz.end(), {p[0], p[1], p[2]});
-  }
-  tris.reserve(3 * mesh.n_faces());
-  for (const auto& f : mesh.faces())
-    for (const auto& v : mesh.fv_range(f)) tris.push_back(std::uint32_t(v.idx()));
-}
 
 Json checks_json(const std::vector<volmap::CheckItem>& checks) {
   Json j = Json::object();
@@ -137,10 +113,8 @@ int main(int argc, char** argv) {
         if (is_surface_extension(ext)) {
           if (!fix_output.empty())
             throw volmap::Error(volmap::ErrorKind::Unsupported, input, 0, "--fix applies to tet meshes only");
-          std::vector<double> xyz;
-          std::vector<std::uint32_t> tris;
-          read_surface_triangles(input, xyz, tris);
-          const auto r = volmap::check_triangle_surface(xyz, tris);
+          const volmap::SurfaceData surface = volmap::read_surface(input);
+          const auto r = volmap::check_surface(surface);
           const bool ok = r.all_passed();
           if (json) {
             const auto& st = r.topology;

@@ -362,4 +362,8 @@ SurfaceCheckReport check_triangle_surface(const std::vector<double>& xyz, const 
   return r;
 }
 
+SurfaceCheckReport check_surface(const SurfaceData& surface, const SelfIntersectionOptions& options) {
+  return check_triangle_surface(surface.xyz, surface.tris, options);
+}
+
 }  // namespace volmap

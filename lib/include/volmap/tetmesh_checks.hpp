@@ -20,6 +20,7 @@
 // malformed arrays (ids out of range, non-finite coordinates).
 #pragma once
 
+#include <volmap/io_surface.hpp>
 #include <volmap/mesh_data.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/self_intersection.hpp>
@@ -105,5 +106,9 @@ struct SurfaceCheckReport {
 // embedded). xyz: 3 doubles per vertex; tris: 3 ids per triangle.
 SurfaceCheckReport check_triangle_surface(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tris,
                                           const SelfIntersectionOptions& options = {});
+
+// Same on a surface as read by read_surface (io_surface.hpp). This is the gate a tetrahedralizer
+// input must pass; volmap-tetmesh-check runs it on .off/.obj/.stl/.ply inputs.
+SurfaceCheckReport check_surface(const SurfaceData& surface, const SelfIntersectionOptions& options = {});
 
 }  // namespace volmap
