@@ -170,8 +170,8 @@ inline bool overlap(const Box& x, const Box& y) {
 }
 struct Node {
   Box box;
-  std::uint32_t first;  // leaf: first index into order; inner: left child (right = first + 1)
-  std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0
+  std::uint32_t begin, end;  // the node's triangles are order[begin, end)
+  std::uint32_t left;        // inner: left child (right = left + 1); leaf: 0 (the root is nobody's child)
 };
 constexpr std::uint32_t kLeafSize = 4;
 
@@ -213,12 +213,11 @@ Bvh build_bvh(const std::vector<Box>& boxes) {
       }
     }
     bvh.nodes[task.node].box = box;
+    bvh.nodes[task.node].begin = task.begin;
+    bvh.nodes[task.node].end = task.end;
+    bvh.nodes[task.node].left = 0;
     const std::uint32_t count = task.end - task.begin;
-    if (count <= kLeafSize) {
-      bvh.nodes[task.node].first = task.begin;
-      bvh.nodes[task.node].count = count;
-      continue;
-    }
+    if (count <= kLeafSize) continue;
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
@@ -228,8 +227,7 @@ Bvh build_bvh(const std::vector<Box>& boxes) {
     const std::uint32_t left = std::uint32_t(bvh.nodes.size());
     bvh.nodes.push_back(Node{});
     bvh.nodes.push_back(Node{});
-    bvh.nodes[task.node].first = left;
-    bvh.nodes[task.node].count = 0;
+    bvh.nodes[task.node].left = left;
     stack.push_back({left, task.begin, mid});
     stack.push_back({left + 1, mid, task.end});
   }
@@ -375,7 +373,9 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
 
   const Bvh bvh = build_bvh(boxes);
 
-  // Query every triangle against later ones.
+  // Query every triangle against the triangles after it in BVH leaf order ("position"): a node whose
+  // positions all come before the query's is skipped, which halves the traversal and keeps queries
+  // spatially coherent. Pairs are reported by triangle ids (smaller first).
   constexpr std::size_t kBlock = 1024;
   const std::size_t num_blocks = (num_tris + kBlock - 1) / kBlock;
   std::vector<BlockResult> blocks(num_blocks);
@@ -383,27 +383,30 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
     BlockResult& out = blocks[block];
     std::uint32_t stack[96];
     const std::size_t end = std::min(num_tris, (block + 1) * kBlock);
-    for (std::size_t t = block * kBlock; t < end; ++t) {
+    for (std::size_t position = block * kBlock; position < end; ++position) {
+      const std::uint32_t t = bvh.order[position];
       if (degenerate[t]) continue;
-      const Box& query = boxes[t];
+      const Box& query = bvh.leaf_boxes[position];
+      const std::uint32_t after = std::uint32_t(position + 1);
       int top = 0;
       stack[top++] = 0;
       while (top > 0) {
         const Node& node = bvh.nodes[stack[--top]];
-        if (!overlap(node.box, query)) continue;
-        if (node.count == 0) {
-          stack[top++] = node.first;
-          stack[top++] = node.first + 1;
+        if (node.end <= after || !overlap(node.box, query)) continue;
+        if (node.left != 0) {
+          stack[top++] = node.left;
+          stack[top++] = node.left + 1;
           continue;
         }
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        for (std::uint32_t i = std::max(node.begin, after); i < node.end; ++i) {
           const std::uint32_t u = bvh.order[i];
-          if (u <= t || degenerate[u] || !overlap(bvh.leaf_boxes[i], query)) continue;
+          if (degenerate[u] || !overlap(bvh.leaf_boxes[i], query)) continue;
           ++out.candidates;
-          if (triangle_pair_intersects(xyz, tris + 3 * t, tris + 3 * std::size_t(u))) {
+          const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
+          if (triangle_pair_intersects(xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {
             ++out.pairs;
             if (cap > 0) {
-              out.smallest.push_back(TrianglePair{std::uint32_t(t), u});
+              out.smallest.push_back(TrianglePair{lo, hi});
               if (out.smallest.size() >= 2 * cap) keep_smallest(out.smallest, cap);
             }
           }
@@ -423,9 +426,9 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   for (const BlockResult& block : blocks) {
     result.intersecting_pairs += block.pairs;
     result.candidate_pairs += block.candidates;
-    for (const TrianglePair& p : block.smallest)
-      if (result.first_pairs.size() < cap) result.first_pairs.push_back(p);
+    result.first_pairs.insert(result.first_pairs.end(), block.smallest.begin(), block.smallest.end());
   }
+  keep_smallest(result.first_pairs, cap);  // each block kept its smallest, so the union holds the global ones
   return result;
 }
 
