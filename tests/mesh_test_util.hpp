@@ -9,10 +9,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <fstream>
 #include <map>
 #include <set>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -54,51 +52,6 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32
 inline int orient_tet(const std::vector<double>& xyz, const std::uint32_t* p) {
   return volmap::orient3d(&xyz[3 * std::size_t(p[0])], &xyz[3 * std::size_t(p[1])], &xyz[3 * std::size_t(p[2])],
                           &xyz[3 * std::size_t(p[3])]);
-}
-
-// Minimal Medit reader for tests only (Vertices / Tetrahedra blocks, '#' comments); the real reader
-// lives in the IO module.
-inline bool read_medit_for_test(const std::string& path, volmap::TetMeshData& d) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::string tok;
-  auto next = [&](std::string& s) {
-    while (in >> s) {
-      if (s[0] == '#') {
-        std::string rest;
-        std::getline(in, rest);
-        continue;
-      }
-      return true;
-    }
-    return false;
-  };
-  while (next(tok)) {
-    if (tok == "Vertices") {
-      std::string n;
-      next(n);
-      const std::size_t nv = std::stoul(n);
-      d.xyz.resize(3 * nv);
-      d.vertex_labels.resize(nv);
-      for (std::size_t v = 0; v < nv; ++v) {
-        for (int c = 0; c < 3; ++c) { next(tok); d.xyz[3 * v + c] = std::stod(tok); }
-        next(tok); d.vertex_labels[v] = std::stoi(tok);
-      }
-    } else if (tok == "Tetrahedra") {
-      std::string n;
-      next(n);
-      const std::size_t nt = std::stoul(n);
-      d.tets.resize(4 * nt);
-      d.tet_labels.resize(nt);
-      for (std::size_t t = 0; t < nt; ++t) {
-        for (int c = 0; c < 4; ++c) { next(tok); d.tets[4 * t + c] = std::uint32_t(std::stoul(tok) - 1); }
-        next(tok); d.tet_labels[t] = std::stoi(tok);
-      }
-    } else if (tok == "End") {
-      break;
-    }
-  }
-  return !d.tets.empty();
 }
 
 }  // namespace mesh_test

@@ -5,6 +5,7 @@
 #include <volmap/boundary_surface.hpp>
 #include <volmap/error.hpp>
 #include <volmap/generate.hpp>
+#include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/tet_mesh.hpp>
 #include <volmap/topology.hpp>
@@ -245,6 +246,17 @@ TEST_CASE("edge stars and edge cache vs brute force; Euler characteristic of a b
     }
   }
   CHECK(std::count(seen_edge.begin(), seen_edge.end(), 1) == long(m.num_edges()));
+  const Span<VertexId> ev_all = m.edge_vertex_array();
+  REQUIRE(ev_all.size() == 2 * m.num_edges());
+  for (std::uint32_t e = 0; e < m.num_edges(); ++e)
+    CHECK(edges.count(std::minmax(ev_all[2 * e].idx(), ev_all[2 * e + 1].idx())) == 1);
+  for (std::uint32_t e = 0; e < m.num_edges(); ++e) {  // stars by edge id
+    const auto ev = m.edge_vertices(EdgeId(e));
+    std::vector<std::uint32_t> star;
+    m.edge_star(EdgeId(e), [&](TetId s) { star.push_back(s.idx()); });
+    std::sort(star.begin(), star.end());
+    CHECK(star == edges.at(std::minmax(ev[0].idx(), ev[1].idx())));
+  }
   CHECK_FALSE(m.find_edge(VertexId(0), VertexId(std::uint32_t(m.num_vertices() - 1)), nullptr, nullptr).is_valid());
 }
 
@@ -318,6 +330,26 @@ TEST_CASE("boundary surface reports faces OpenMesh refuses (pinched edge)") {
   for (HalfFaceId h : s.rejected_half_faces) CHECK(m.half_face_is_boundary(h));
 }
 
+TEST_CASE("pinched vertex: vertex_star is the face-connected cluster, vertex_tets lists all") {
+  const TetMeshData d = generate_kuhn_grid(2, 2, 2, [](std::size_t i, std::size_t j, std::size_t k) {
+    return (i == 0 && j == 0 && k == 0) || (i == 1 && j == 1 && k == 1);
+  });
+  const TetMesh m(d);
+  CHECK(m.check_invariants(true).ok);
+  VertexId centre;
+  for (std::uint32_t v = 0; v < m.num_vertices(); ++v)
+    if (m.vertex_position(VertexId(v))[0] == 1.0 && m.vertex_position(VertexId(v))[1] == 1.0 &&
+        m.vertex_position(VertexId(v))[2] == 1.0)
+      centre = VertexId(v);
+  REQUIRE(centre.is_valid());
+  std::vector<TetId> star;
+  m.vertex_star(centre, star);
+  CHECK(star.size() == 6);  // the 6 Kuhn tets of one cube (all hold both ends of its main diagonal)
+  CHECK(m.vertex_tets(centre).size() == 12);
+  m.vertex_star(centre, star);  // same answer with the cache built
+  CHECK(star.size() == 6);
+}
+
 TEST_CASE("memory: core bytes per tet within budget on a grid") {
   const TetMesh m(generate_kuhn_grid(10, 10, 10));
   const double per_tet = double(m.core_bytes()) / double(m.num_tets());
@@ -326,28 +358,72 @@ TEST_CASE("memory: core bytes per tet within budget on a grid") {
   CHECK(m.label_bytes() == 0);  // all-zero labels are not stored
 }
 
-TEST_CASE("G1 meshes build and match analyze_topology") {
+namespace {
+// Builds a real mesh and cross-checks it against analyze_topology, the boundary surface and
+// to_data(); returns the topology report.
+TopologyReport check_real_mesh(const std::filesystem::path& path) {
+  INFO(path.string());
+  const TetMeshData d = read_tet_mesh(path.string());
+  const TopologyReport r = analyze_topology(d);
+  const TetMesh m(d);
+  const InvariantReport inv = m.check_invariants();
+  INFO(inv.problem);
+  CHECK(inv.ok);
+  CHECK(r.boundary_half_faces.size() == m.boundary_half_faces().size());
+  for (std::size_t k = 0; k < r.boundary_half_faces.size(); ++k)
+    CHECK(r.boundary_half_faces[k] == m.boundary_half_faces()[k].idx());
+  const BoundarySurface s = extract_boundary_surface(m);
+  CHECK(s.complete());
+  CHECK(long(s.mesh.n_vertices()) - long(s.mesh.n_edges()) + long(s.mesh.n_faces()) == r.boundary_euler);
+  CHECK(s.mesh.n_vertices() == r.num_boundary_vertices);
+  const TetMeshData back = m.to_data();
+  CHECK(back.tets == d.tets);
+  CHECK(back.xyz == d.xyz);
+  return r;
+}
+}  // namespace
+
+TEST_CASE("G1 meshes build, are genus-0 balls, and agree with analyze_topology") {
   VOLMAP_REQUIRE_DATA(dir, "volmap/G1");
   std::size_t count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".mesh") continue;
-    TetMeshData d;
-    REQUIRE(mesh_test::read_medit_for_test(entry.path().string(), d));
+    const TopologyReport r = check_real_mesh(entry.path());
     INFO(entry.path().filename().string());
-    const TetMesh m(d);
-    CHECK(m.check_invariants().ok);
-    const TopologyReport r = analyze_topology(d);
-    CHECK(r.boundary_half_faces.size() == m.boundary_half_faces().size());
     CHECK(r.boundary_genus_zero);
     CHECK(r.single_tet_component);
-    CHECK(r.num_tet_components == 1);
-    const BoundarySurface s = extract_boundary_surface(m);
-    CHECK(s.complete());
-    CHECK(long(s.mesh.n_vertices()) - long(s.mesh.n_edges()) + long(s.mesh.n_faces()) == 2);
-    const TetMeshData back = m.to_data();
-    CHECK(back.tets == d.tets);
-    CHECK(back.xyz == d.xyz);
+    CHECK(r.single_boundary_component);
+    CHECK(r.boundary_closed);
     ++count;
   }
-  CHECK(count >= 20);
+  CHECK(count == 20);
+}
+
+TEST_CASE("viewer samples and standalone tet meshes (either orientation) build") {
+  VOLMAP_REQUIRE_DATA(root, "volmap/viewer-samples");
+  const char* files[] = {"volmap/viewer-samples/bimba_input.mesh", "volmap/viewer-samples/bimba_output.mesh",
+                         "volmap/viewer-samples/bunny_input.mesh", "volmap/viewer-samples/duck_input.mesh",
+                         "volmap/viewer-samples/hand_aigerman.mesh", "volmap/viewer-samples/max.mesh",
+                         "volmap/viewer-samples/bimba_object.vtk", "tetmeshes/cinolib/sphere.mesh",
+                         "tetmeshes/libigl_tutorial/bunny.mesh", "tetmeshes/robustpolycube/B0.mesh",
+                         "tetmeshes/robustpolycube/pente.mesh", "tetmeshes/stardecompositionmaps/open.vtk"};
+  for (const char* f : files) {
+    const auto p = volmap_test::data_file(f);
+    if (p.empty()) {
+      MESSAGE("skipped: " << f << " is absent");
+      continue;
+    }
+    const TopologyReport r = check_real_mesh(p);
+    INFO(f);
+    CHECK(r.boundary_genus_zero);
+    CHECK(r.single_tet_component);
+  }
+}
+
+TEST_CASE("negative: robustpolycube_NY_2 has a genus-1 boundary") {
+  VOLMAP_REQUIRE_DATA(p, "negative/robustpolycube_NY_2.mesh");
+  const TopologyReport r = check_real_mesh(p);
+  CHECK(r.boundary_genus_defined);
+  CHECK(r.boundary_genus == 1);
+  CHECK_FALSE(r.boundary_genus_zero);
 }

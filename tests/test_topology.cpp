@@ -1,12 +1,17 @@
 // analyze_topology on good and deliberately broken raw arrays (known counts as oracles).
 #include <doctest/doctest.h>
 
+#include <volmap/boundary_faces.hpp>
 #include <volmap/error.hpp>
 #include <volmap/generate.hpp>
 #include <volmap/tet_mesh.hpp>
 #include <volmap/topology.hpp>
 
 #include "mesh_test_util.hpp"
+
+#include <map>
+#include <random>
+#include <set>
 
 using namespace volmap;
 
@@ -156,4 +161,102 @@ TEST_CASE("empty input") {
   CHECK(r.num_tet_components == 0);
   CHECK_FALSE(r.single_tet_component);
   CHECK_FALSE(r.boundary_genus_zero);
+}
+
+TEST_CASE("random tet soups: analyze_topology agrees with a std::map oracle") {
+  std::mt19937 rng(7);
+  for (int round = 0; round < 300; ++round) {
+    TetMeshData d;
+    const std::uint32_t nv = 4 + rng() % 10;
+    const std::size_t nt = 1 + rng() % 12;
+    d.xyz.assign(3 * nv, 0.0);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 4; ++i) d.tets.push_back(rng() % nv);
+    const TopologyReport r = analyze_topology(d);
+    // Oracle.
+    std::vector<char> deg(nt, 0);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < i; ++j) deg[t] |= d.tets[4 * t + i] == d.tets[4 * t + j];
+    TetMeshData live = d;
+    for (std::size_t t = 0; t < nt; ++t)
+      if (deg[t]) live.tets[4 * t] = 0xFFFFFFFFu;
+    const auto faces = mesh_test::brute_faces(live.tets);
+    std::size_t boundary = 0, nonmanifold = 0, interior = 0;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> bedges;
+    std::set<std::uint32_t> bverts;
+    for (const auto& [key, hs] : faces) {
+      if (hs.size() == 1) {
+        ++boundary;
+        for (int a = 0; a < 3; ++a) {
+          bverts.insert(key[a]);
+          for (int b = a + 1; b < 3; ++b) ++bedges[{key[a], key[b]}];
+        }
+      } else if (hs.size() == 2) {
+        ++interior;
+      } else {
+        ++nonmanifold;
+      }
+    }
+    std::size_t border = 0, over = 0;
+    for (const auto& [e, c] : bedges) {
+      border += c == 1;
+      over += c > 2;
+    }
+    // Tet components by repeated relaxation over shared faces.
+    std::vector<std::size_t> comp(nt);
+    for (std::size_t t = 0; t < nt; ++t) comp[t] = t;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const auto& [key, hs] : faces)
+        for (std::uint32_t h : hs)
+          for (std::uint32_t g : hs)
+            if (comp[g / 4] > comp[h / 4]) {
+              comp[g / 4] = comp[h / 4];
+              changed = true;
+            }
+    }
+    std::set<std::size_t> roots;
+    for (std::size_t t = 0; t < nt; ++t)
+      if (!deg[t]) roots.insert(comp[t]);
+    INFO("round " << round);
+    CHECK(r.num_degenerate_tets == std::size_t(std::count(deg.begin(), deg.end(), 1)));
+    CHECK(r.num_faces == faces.size());
+    CHECK(r.num_boundary_faces == boundary);
+    CHECK(r.num_interior_faces == interior);
+    CHECK(r.num_nonmanifold_faces == nonmanifold);
+    CHECK(r.num_boundary_edges == bedges.size());
+    CHECK(r.num_boundary_vertices == bverts.size());
+    CHECK(r.num_border_edges == border);
+    CHECK(r.num_overshared_edges == over);
+    CHECK(r.boundary_euler == long(bverts.size()) - long(bedges.size()) + long(boundary));
+    CHECK(r.num_tet_components == roots.size());
+  }
+}
+
+TEST_CASE("boundary half-faces agree with the IO module's boundary_half_faces (independent code)") {
+  std::mt19937 rng(11);
+  std::vector<TetMeshData> cases = {generate_kuhn_grid(3, 2, 4),
+                                    generate_kuhn_grid(3, 3, 1, [](std::size_t i, std::size_t j, std::size_t) { return !(i == 1 && j == 1); })};
+  for (int round = 0; round < 100; ++round) {  // soups without repeated ids in a tet
+    TetMeshData d;
+    const std::uint32_t nv = 4 + rng() % 8;
+    d.xyz.assign(3 * nv, 0.0);
+    for (std::size_t t = 0, nt = 1 + rng() % 10; t < nt; ++t) {
+      std::uint32_t p[4];
+      do {
+        for (auto& x : p) x = rng() % nv;
+      } while (p[0] == p[1] || p[0] == p[2] || p[0] == p[3] || p[1] == p[2] || p[1] == p[3] || p[2] == p[3]);
+      d.tets.insert(d.tets.end(), p, p + 4);
+    }
+    cases.push_back(d);
+  }
+  for (const TetMeshData& d : cases) {
+    const TopologyReport r = analyze_topology(d);
+    const std::vector<std::uint64_t> io = boundary_half_faces(d);
+    REQUIRE(io.size() == r.boundary_half_faces.size());
+    for (std::size_t k = 0; k < io.size(); ++k) CHECK(io[k] == r.boundary_half_faces[k]);
+    const std::vector<std::uint32_t> bv = boundary_vertex_ids(d);
+    CHECK(bv.size() == r.num_boundary_vertices);
+  }
 }

@@ -38,9 +38,12 @@ TetMesh::TetMesh(const TetMesh& o)
 TetMesh& TetMesh::operator=(const TetMesh& o) {
   if (this == &o) return *this;
   TetMesh copy(o);
-  copy.properties_ = properties_;  // our properties stay attached to us
+  copy.properties_ = properties_;  // our properties stay attached to us...
   *this = std::move(copy);
   ++topology_version_;
+  // ...and are reset to their default values at the new sizes (their old entries meant other elements).
+  properties_->notify_compact(ElementKind::Vertex, {}, num_vertex_slots());
+  properties_->notify_compact(ElementKind::Tet, {}, num_tet_slots());
   return *this;
 }
 
@@ -51,7 +54,7 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
   if (data.xyz.size() % 3 != 0) bad("vertex coordinate array size " + std::to_string(data.xyz.size()) + " is not a multiple of 3");
   if (data.tets.size() % 4 != 0) bad("tet array size " + std::to_string(data.tets.size()) + " is not a multiple of 4");
   const std::size_t nv = data.num_vertices(), nt = data.num_tets();
-  if (nt > (std::size_t(1) << 30)) bad("too many tets (" + std::to_string(nt) + " > 2^30)");
+  if (nt > detail::kMaxGroupedTets) bad("too many tets (" + std::to_string(nt) + " > 2^29)");
   if (nv >= kNone) bad("too many vertices (" + std::to_string(nv) + ")");
   if (!data.vertex_labels.empty() && data.vertex_labels.size() != nv)
     bad("vertex label count " + std::to_string(data.vertex_labels.size()) + " != vertex count " + std::to_string(nv));
@@ -73,19 +76,20 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
   opp_.assign(4 * nt, kBoundary);
   detail::group_faces(
       tv, nt, nv, [](std::size_t) { return false; },
-      [&](std::uint32_t m, const detail::FaceEntry* g, std::size_t n) {
+      [&](std::uint32_t m, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
         if (n == 1) return;
-        const std::uint32_t a = std::uint32_t(g[0].key >> 32), b = std::uint32_t(g[0].key);
+        const std::uint32_t a = std::uint32_t(keys[0] >> 32), b = std::uint32_t(keys[0]);
         if (n > 2) {
           std::string tets;
-          for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(g[k].hf >> 2);
+          for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(detail::hf_of(g[k]) >> 2);
           bad("non-manifold face " + triple(m, a, b) + " is shared by " + std::to_string(n) + " tets (" + tets + ")");
         }
-        if (g[0].parity == g[1].parity)
-          bad("inconsistent orientation: tets " + std::to_string(g[0].hf >> 2) + " and " + std::to_string(g[1].hf >> 2) +
+        const std::uint32_t h0 = detail::hf_of(g[0]), h1 = detail::hf_of(g[1]);
+        if (detail::parity_of(g[0]) == detail::parity_of(g[1]))
+          bad("inconsistent orientation: tets " + std::to_string(h0 >> 2) + " and " + std::to_string(h1 >> 2) +
               " share face " + triple(m, a, b) + " with the same winding");
-        opp_[g[0].hf] = g[1].hf;
-        opp_[g[1].hf] = g[0].hf;
+        opp_[h0] = h1;
+        opp_[h1] = h0;
       });
   v2h_.assign(nv, kNone);
   for (std::size_t h = 0; h < 4 * nt; ++h) v2h_[tv_[h]] = std::uint32_t((h & ~std::size_t(3)) | ((h + 1) & 3));
@@ -134,11 +138,6 @@ TetMeshData TetMesh::to_data() const {
 
 void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
   out.clear();
-  if (vt_cache_.version == topology_version_) {
-    const auto s = vertex_tets(v);
-    out.assign(s.begin(), s.end());
-    return;
-  }
   const std::uint32_t h0 = v2h_[v.idx()];
   if (h0 == kNone) return;
   out.push_back(TetId(h0 >> 2));
@@ -179,6 +178,14 @@ void TetMesh::ensure_edge_cache() const {
   c.e_of_tet.assign(6 * nts, EdgeId::kInvalid);
   c.edge_v.clear();
   c.edge_tet.clear();
+  // Euler (V - E + F - T = 1 for a ball, F = (4T + boundary faces)/2) gives the edge count up to a
+  // few: reserve it so the cache carries no growth slack.
+  std::size_t boundary_faces = 0;
+  for (std::size_t h = 0; h < opp_.size(); ++h) boundary_faces += opp_[h] == kBoundary;
+  boundary_faces -= 4 * free_tets_.size();
+  const std::size_t expect = num_live_vertices_ + num_live_tets_ + boundary_faces / 2 + 16;
+  c.edge_v.reserve(2 * expect);
+  c.edge_tet.reserve(expect);
   std::uint32_t ne = 0;
   for (std::size_t t = 0; t < nts; ++t) {
     if (tv_[4 * t] == kNone) continue;
@@ -247,6 +254,10 @@ EdgeId TetMesh::tet_edge(TetId t, int k) const {
 std::array<VertexId, 2> TetMesh::edge_vertices(EdgeId e) const {
   ensure_edge_cache();
   return {edge_cache_.edge_v[2 * std::size_t(e.idx())], edge_cache_.edge_v[2 * std::size_t(e.idx()) + 1]};
+}
+Span<VertexId> TetMesh::edge_vertex_array() const {
+  ensure_edge_cache();
+  return {edge_cache_.edge_v.data(), edge_cache_.edge_v.size()};
 }
 std::pair<TetId, int> TetMesh::edge_tet(EdgeId e) const {
   ensure_edge_cache();
@@ -403,6 +414,15 @@ VertexId TetMesh::split_edge(TetId t0, int a0, int b0, const double p[3]) {
   refresh_v2h(scratch_.data() + 3 * k, 2 * k);
   edited();
   return VertexId(w);
+}
+
+VertexId TetMesh::split_edge(VertexId va, VertexId vb, const double p[3]) {
+  if (va.idx() >= num_vertex_slots() || vb.idx() >= num_vertex_slots() || !vertex_is_live(va) || !vertex_is_live(vb))
+    failed("split_edge: vertex not live");
+  int a = -1, b = -1;
+  const TetId t = find_edge(va, vb, &a, &b);
+  if (!t.is_valid()) failed("split_edge: no edge (" + std::to_string(va.idx()) + "," + std::to_string(vb.idx()) + ")");
+  return split_edge(t, a, b, p);
 }
 
 VertexId TetMesh::split_face(HalfFaceId h, const double p[3]) {

@@ -46,7 +46,7 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   if (data.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "vertex coordinate array size is not a multiple of 3");
   if (data.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "", 0, "tet array size is not a multiple of 4");
   const std::size_t nv = data.num_vertices(), nt = data.num_tets();
-  if (nt > (std::size_t(1) << 30)) throw Error(ErrorKind::BadInput, "", 0, "too many tets");
+  if (nt > detail::kMaxGroupedTets) throw Error(ErrorKind::BadInput, "", 0, "too many tets (> 2^29)");
   r.num_vertices = nv;
   r.num_tets = nt;
   const std::uint32_t* tv = data.tets.data();
@@ -76,22 +76,23 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   std::vector<std::uint32_t>& bhf = r.boundary_half_faces;
   detail::group_faces(
       tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
-      [&](std::uint32_t, const detail::FaceEntry* g, std::size_t n) {
+      [&](std::uint32_t, const std::uint64_t*, const std::uint32_t* g, std::size_t n) {
         ++r.num_faces;
+        const std::uint32_t h0 = detail::hf_of(g[0]);
         if (n == 1) {
-          bhf.push_back(g[0].hf);
+          bhf.push_back(h0);
           return;
         }
-        for (std::size_t k = 1; k < n; ++k) tet_sets.unite(g[0].hf >> 2, g[k].hf >> 2);
+        for (std::size_t k = 1; k < n; ++k) tet_sets.unite(h0 >> 2, detail::hf_of(g[k]) >> 2);
         if (n == 2) {
           ++r.num_interior_faces;
-          if (g[0].parity == g[1].parity) {
+          if (detail::parity_of(g[0]) == detail::parity_of(g[1])) {
             ++r.num_inconsistent_faces;
-            if (r.example_inconsistent_face == kNone) r.example_inconsistent_face = g[0].hf;
+            if (r.example_inconsistent_face == kNone) r.example_inconsistent_face = h0;
           }
         } else {
           ++r.num_nonmanifold_faces;
-          if (r.example_nonmanifold_face == kNone) r.example_nonmanifold_face = g[0].hf;
+          if (r.example_nonmanifold_face == kNone) r.example_nonmanifold_face = h0;
         }
       });
   std::sort(bhf.begin(), bhf.end());

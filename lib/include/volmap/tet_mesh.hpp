@@ -65,11 +65,12 @@ class TetMesh {
 
   TetMesh();
   // Builds the half-face structure in linear time. Throws Error(BadInput) naming the offending
-  // tet/face/vertex for: sizes not multiples of 3/4, ids out of range, a tet repeating a vertex,
+  // tet/face/vertex for: sizes not multiples of 3/4, more than 2^29 tets, ids out of range, a tet repeating a vertex,
   // a face shared by more than two tets, matched faces with equal winding (inconsistent
   // orientation), a vertex used by no tet.
   explicit TetMesh(const TetMeshData& data);
-  TetMesh(const TetMesh& other);             // copies geometry/topology; properties stay with `other`
+  TetMesh(const TetMesh& other);  // copies geometry/topology; properties stay with `other`
+  // Properties attached to *this stay attached, reset to their default values at the new sizes.
   TetMesh& operator=(const TetMesh& other);
   TetMesh(TetMesh&&) noexcept;
   TetMesh& operator=(TetMesh&&) noexcept;
@@ -126,8 +127,10 @@ class TetMesh {
   }
   HalfFaceId vertex_half_face(VertexId v) const { return HalfFaceId(v2h_[v.idx()]); }
   bool vertex_is_boundary(VertexId v) const { return opp_[v2h_[v.idx()]] == kBoundary; }
-  // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity).
-  // Uses the vertex->tets cache when it is current, else walks face neighbours around v.
+  // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity), found by
+  // walking face neighbours around v from v2h (no cache involved). On a non-manifold ("pinched")
+  // vertex, whose tets are not connected through faces containing v, this is only the cluster
+  // holding v2h[v]; vertex_tets(v) (cache) lists all tets containing v.
   void vertex_star(VertexId v, std::vector<TetId>& out) const;
 
   // ---- raw arrays (read-only; layout in the convention block) -------------------------------
@@ -163,9 +166,13 @@ class TetMesh {
   void build_caches() const;  // all of them, now
   void clear_caches() const;
   // Edge ids (cache): e_of_tet[6t+k] for local edge kTetEdge[k], edge_v[2e], one (6t+k) per edge.
+  // An id names one edge star (fan of face-connected tets): on a mesh with a pinched (non-manifold)
+  // edge, that vertex pair gets one id per fan. analyze_topology() reports such meshes.
   std::size_t num_edges() const;
   EdgeId tet_edge(TetId t, int k) const;
   std::array<VertexId, 2> edge_vertices(EdgeId e) const;
+  // All edges as 2*num_edges() vertex ids (edge e = entries 2e, 2e+1), e.g. for Laplacian assembly.
+  Span<VertexId> edge_vertex_array() const;
   // One (tet, local edge k) holding e.
   std::pair<TetId, int> edge_tet(EdgeId e) const;
   template <class F>
@@ -173,6 +180,7 @@ class TetMesh {
     const auto tk = edge_tet(e);
     return edge_star(tk.first, kTetEdge[tk.second][0], kTetEdge[tk.second][1], std::forward<F>(f));
   }
+  // Spans returned by the cache accessors below stay valid until the next edit or clear_caches().
   // Vertex -> tets CSR (cache), each list sorted by tet id.
   Span<TetId> vertex_tets(VertexId v) const;
   // Boundary half-faces, sorted (cache).
@@ -193,6 +201,8 @@ class TetMesh {
   // p is positive iff p is strictly on vertex j's side (orient3d is affine in each argument).
   // Splits the edge (local a, local b) of t: every tet of its star becomes two.
   VertexId split_edge(TetId t, int a, int b, const double p[3]);
+  // Same for the edge (va, vb); throws Error(Failed) when there is no such edge.
+  VertexId split_edge(VertexId va, VertexId vb, const double p[3]);
   // Splits face h: each tet on it (1 on the boundary, else 2) becomes three.
   VertexId split_face(HalfFaceId h, const double p[3]);
   // Splits tet t into four around p.
