@@ -13,6 +13,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -162,6 +163,12 @@ TEST_CASE("non-manifold and disconnected inputs are reported, not thrown") {
   TetMeshData bad = unit_tet();
   bad.tets[3] = 17;
   CHECK_THROWS_AS(check_tet_mesh(bad), volmap::Error);
+  TetMeshData nan = unit_tet();
+  nan.xyz[4] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(check_tet_mesh(nan), volmap::Error);
+  TetMeshData ragged = unit_tet();
+  ragged.tets.pop_back();
+  CHECK_THROWS_AS(check_tet_mesh(ragged), volmap::Error);
 }
 
 TEST_CASE("G1: all 20 meshes pass the seven checks and round-trip through .vtu bit-exactly") {

@@ -107,6 +107,16 @@ TEST_CASE("G1 bone passes: human output and one JSON object") {
   CHECK(j.at("report").at("checks").size() == 7);
   CHECK(failed(j.at("report").at("checks")).empty());
   CHECK(j.at("report").at("orientation").at("positive") == 8629);
+  // --fix on a mesh already in the VOLMAP convention writes it unchanged (here as .vtu) and passes.
+  const fs::path out = scratch() / "bone_fixed.vtu";
+  fs::remove(out);
+  r = run(q(bone) + " --json --fix " + q(out));
+  CHECK(r.code == 0);
+  CHECK(one_object(r).at("fix").at("flipped_tets") == 0);
+  CHECK(fs::exists(out));
+  CHECK(run(q(out)).code == 0);
+  // An output folder that does not exist: bad input (2), nothing written.
+  CHECK(run(q(bone) + " --fix /nonexistent/dir/x.mesh").code == 2);
 }
 
 TEST_CASE("--fix repairs coherently opposite meshes and refuses mixed ones") {
