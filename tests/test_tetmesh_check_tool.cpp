@@ -115,6 +115,12 @@ TEST_CASE("G1 bone passes: human output and one JSON object") {
   CHECK(one_object(r).at("fix").at("flipped_tets") == 0);
   CHECK(fs::exists(out));
   CHECK(run(q(out)).code == 0);
+  // --log: VOLMAP's CSV line, appended (reference: `bone.mesh; 1; 1; 1; 1; 1; 1; 1`).
+  const fs::path log = scratch() / "log.csv";
+  fs::remove(log);
+  CHECK(run(q(bone) + " --log " + q(log)).code == 0);
+  CHECK(run(q(bone) + " --log " + q(log)).code == 0);
+  CHECK(slurp(log) == "bone.mesh; 1; 1; 1; 1; 1; 1; 1\nbone.mesh; 1; 1; 1; 1; 1; 1; 1\n");
   // An output folder that does not exist: bad input (2), nothing written.
   CHECK(run(q(bone) + " --fix /nonexistent/dir/x.mesh").code == 2);
 }

@@ -1,4 +1,4 @@
-// volmap-tetmesh-check <in.mesh|.vtk|.vtu> [--fix out.mesh] [--json]
+// volmap-tetmesh-check <in.mesh|.vtk|.vtu> [--fix out.mesh] [--json] [--log checks.csv]
 // The seven VOLMAP input checks (volmap-reference.md §8 `tetmesh_checks`, done exactly on every tet):
 // orientation, volume, genus, components, manifold, closed, self_intersections. One line per check
 // (PASSED/FAILED with figures) or, with --json, one JSON object.
@@ -8,10 +8,12 @@
 // the signs are mixed. A mesh already in the VOLMAP convention is written unchanged.
 // A surface (.off/.obj/.stl/.ply, read by read_surface) gets the five surface checks instead
 // (check_surface: no orientation/volume).
+// --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order).
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
 #include "tool_common.hpp"
 
+#include <volmap/atomic_file.hpp>
 #include <volmap/io.hpp>
 #include <volmap/io_surface.hpp>
 #include <volmap/tetmesh_checks.hpp>
@@ -21,6 +23,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 namespace {
 
@@ -105,6 +108,10 @@ int main(int argc, char** argv) {
                  "write the mesh flipped to the VOLMAP convention (v0<->v1 in every tet) when it is coherently "
                  "opposite; refused (exit 1) when orientation is mixed");
   app.add_flag("--json", json, "print one JSON object");
+  std::string log_csv;
+  app.add_option("--log", log_csv,
+                 "append one line in VOLMAP tetmesh_checks' CSV format `name; o; v; g; c; m; b; i` (1 = passed) "
+                 "to this file (rewritten atomically)");
   return volmap_tools::run_tool(
       app, argc, argv,
       [&]() -> int {
@@ -150,6 +157,22 @@ int main(int argc, char** argv) {
           std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
           print_checks(report.checks);
           std::printf("%s\n", ok ? "all checks PASSED" : "checks FAILED");
+        }
+
+        if (!log_csv.empty()) {
+          // VOLMAP's column order: orientation, volume, genus, components, manifold, borders, intersections.
+          std::string line = std::filesystem::path(input).filename().string();
+          for (const char* key : {"orientation", "volume", "genus", "components", "manifold", "closed", "self_intersections"})
+            line += std::string("; ") + (report.check(key).passed ? "1" : "0");
+          std::string content;
+          if (std::FILE* f = std::fopen(log_csv.c_str(), "rb")) {
+            char buffer[65536];
+            std::size_t n;
+            while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) content.append(buffer, n);
+            std::fclose(f);
+            if (!content.empty() && content.back() != '\n') content += '\n';
+          }
+          volmap::write_text_atomically(log_csv, content + line + "\n");
         }
 
         if (!fix_output.empty()) {
