@@ -1,10 +1,10 @@
 // self_intersection.cpp — exact triangle-surface self-intersection test (see self_intersection.hpp).
 //
 // Pipeline: validate ids/coordinates; flag degenerate triangles; find coincident vertices by sorting
-// positions; build a flat bounding-volume hierarchy (median split, nodes in one array, no per-node
-// heap storage) over the triangle boxes; for every triangle, in parallel blocks, query the BVH for
-// later triangles whose closed boxes overlap and run the exact pair test chosen by how many vertex
-// ids the two share. Box tests compare doubles only (exact); every sign is volmap::orient3d/orient2d.
+// positions; build a flat bounding-volume hierarchy over the triangle boxes (Morton order, halved
+// ranges, nodes in one array, no per-node heap storage); for every triangle, in parallel blocks,
+// query the BVH for the triangles after it (in BVH order) whose closed boxes overlap and run the
+// exact pair test chosen by how many vertex // ids the two share. Box tests compare doubles only (exact); every sign is volmap::orient3d/orient2d.
 //
 // Why testing the six edges suffices for two closed triangles (non-adjacent case): their intersection
 // is a compact convex set; an extreme point of it cannot lie in the relative interior of both
@@ -181,58 +181,82 @@ struct Bvh {
   std::vector<Box> leaf_boxes;       // boxes in `order` order (cache-friendly leaf scans)
 };
 
+// Spreads the low 10 bits of x so that there are two zero bits between consecutive bits.
+inline std::uint32_t spread_bits(std::uint32_t x) {
+  x &= 0x3FFu;
+  x = (x | (x << 16)) & 0x030000FFu;
+  x = (x | (x << 8)) & 0x0300F00Fu;
+  x = (x | (x << 4)) & 0x030C30C3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
+// Triangles are ordered along a Morton (Z-order) curve of their box centres (one sort of 64-bit
+// keys), the tree halves position ranges top-down, and boxes are merged bottom-up: O(n log n) for
+// the sort, O(n) for the rest. Children are created after their parent, so a reverse sweep over the
+// node array sees every child before its parent.
 Bvh build_bvh(const std::vector<Box>& boxes) {
   const std::size_t n = boxes.size();
   Bvh bvh;
   bvh.order.resize(n);
-  std::iota(bvh.order.begin(), bvh.order.end(), 0u);
   if (n == 0) return bvh;
-  std::vector<float> centroid(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) centroid[3 * i + k] = float(0.5 * (boxes[i].lo[k] + boxes[i].hi[k]));
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = boxes[0].lo[k];
+    hi[k] = boxes[0].hi[k];
+  }
+  for (const Box& box : boxes)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], box.lo[k]);
+      hi[k] = std::max(hi[k], box.hi[k]);
+    }
+  double scale[3];
+  for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? 1023.0 / (hi[k] - lo[k]) : 0.0;
+  std::vector<std::uint64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
+      const double q = std::min(1023.0, std::max(0.0, (c - lo[k]) * scale[k]));
+      code |= spread_bits(std::uint32_t(q)) << k;
+    }
+    keys[i] = (std::uint64_t(code) << 32) | std::uint64_t(i);
+  }
+  std::sort(keys.begin(), keys.end());
+  bvh.leaf_boxes.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    bvh.order[i] = std::uint32_t(keys[i] & 0xFFFFFFFFu);
+    bvh.leaf_boxes[i] = boxes[bvh.order[i]];
+  }
   bvh.nodes.reserve(2 * (n / kLeafSize + 1));
-  struct Task {
-    std::uint32_t node, begin, end;
-  };
-  std::vector<Task> stack;
-  stack.reserve(128);
-  bvh.nodes.push_back(Node{});
-  stack.push_back({0, 0, std::uint32_t(n)});
-  while (!stack.empty()) {
-    const Task task = stack.back();
-    stack.pop_back();
-    Box box = boxes[bvh.order[task.begin]];
-    float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (std::uint32_t i = task.begin; i < task.end; ++i) {
-      const std::uint32_t t = bvh.order[i];
+  bvh.nodes.push_back(Node{Box{}, 0, std::uint32_t(n), 0});
+  for (std::size_t at = 0; at < bvh.nodes.size(); ++at) {  // top-down: split ranges in half
+    const std::uint32_t begin = bvh.nodes[at].begin, end = bvh.nodes[at].end;
+    if (end - begin <= kLeafSize) continue;
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const std::uint32_t left = std::uint32_t(bvh.nodes.size());
+    bvh.nodes[at].left = left;
+    bvh.nodes.push_back(Node{Box{}, begin, mid, 0});
+    bvh.nodes.push_back(Node{Box{}, mid, end, 0});
+  }
+  for (std::size_t at = bvh.nodes.size(); at-- > 0;) {  // bottom-up boxes
+    Node& node = bvh.nodes[at];
+    if (node.left == 0) {
+      node.box = bvh.leaf_boxes[node.begin];
+      for (std::uint32_t i = node.begin + 1; i < node.end; ++i)
+        for (int k = 0; k < 3; ++k) {
+          node.box.lo[k] = std::min(node.box.lo[k], bvh.leaf_boxes[i].lo[k]);
+          node.box.hi[k] = std::max(node.box.hi[k], bvh.leaf_boxes[i].hi[k]);
+        }
+    } else {
+      const Box& l = bvh.nodes[node.left].box;
+      const Box& r = bvh.nodes[node.left + 1].box;
       for (int k = 0; k < 3; ++k) {
-        box.lo[k] = std::min(box.lo[k], boxes[t].lo[k]);
-        box.hi[k] = std::max(box.hi[k], boxes[t].hi[k]);
-        clo[k] = std::min(clo[k], centroid[3 * t + k]);
-        chi[k] = std::max(chi[k], centroid[3 * t + k]);
+        node.box.lo[k] = std::min(l.lo[k], r.lo[k]);
+        node.box.hi[k] = std::max(l.hi[k], r.hi[k]);
       }
     }
-    bvh.nodes[task.node].box = box;
-    bvh.nodes[task.node].begin = task.begin;
-    bvh.nodes[task.node].end = task.end;
-    bvh.nodes[task.node].left = 0;
-    const std::uint32_t count = task.end - task.begin;
-    if (count <= kLeafSize) continue;
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
-    const std::uint32_t mid = task.begin + count / 2;
-    std::nth_element(bvh.order.begin() + task.begin, bvh.order.begin() + mid, bvh.order.begin() + task.end,
-                     [&](std::uint32_t x, std::uint32_t y) { return centroid[3 * x + axis] < centroid[3 * y + axis]; });
-    const std::uint32_t left = std::uint32_t(bvh.nodes.size());
-    bvh.nodes.push_back(Node{});
-    bvh.nodes.push_back(Node{});
-    bvh.nodes[task.node].left = left;
-    stack.push_back({left, task.begin, mid});
-    stack.push_back({left + 1, mid, task.end});
   }
-  bvh.leaf_boxes.resize(n);
-  for (std::size_t i = 0; i < n; ++i) bvh.leaf_boxes[i] = boxes[bvh.order[i]];
   return bvh;
 }
 
