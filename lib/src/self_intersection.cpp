@@ -4,7 +4,8 @@
 // positions; build a flat bounding-volume hierarchy over the triangle boxes (Morton order, halved
 // ranges, nodes in one array, no per-node heap storage); for every triangle, in parallel blocks,
 // query the BVH for the triangles after it (in BVH order) whose closed boxes overlap and run the
-// exact pair test chosen by how many vertex // ids the two share. Box tests compare doubles only (exact); every sign is volmap::orient3d/orient2d.
+// exact pair test chosen by how many vertex ids the two share. Box tests compare doubles only
+// (exact); every sign is volmap::orient3d/orient2d.
 //
 // Why testing the six edges suffices for two closed triangles (non-adjacent case): their intersection
 // is a compact convex set; an extreme point of it cannot lie in the relative interior of both
