@@ -214,6 +214,44 @@ TEST_CASE("bone identity via the tool: VOLMAP text, CSV line and JSON") {
   CHECK(j["energies"]["arap"]["max"].get<double>() < 1e-20);
 }
 
+TEST_CASE("tool --vtu: per-tet cell data readable back, inverted flags match the count") {
+  VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
+  const TetMeshData in = read_medit(bone.string());
+  TetMeshData out = in;
+  // Push one vertex of tet 0 through its opposite face: a few tets invert.
+  const std::uint32_t* t0 = &in.tets[0];
+  for (int i = 0; i < 3; ++i) {
+    const double centroid = (in.xyz[3 * t0[1] + i] + in.xyz[3 * t0[2] + i] + in.xyz[3 * t0[3] + i]) / 3.0;
+    out.xyz[3 * t0[0] + i] = centroid + 2.0 * (centroid - in.xyz[3 * t0[0] + i]);
+  }
+  const fs::path d = fs::temp_directory_path() / ("vmap_metrics_vtu_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  write_medit((d / "out.mesh").string(), out);
+  const auto tool = volmap_test::tool("volmap-metrics").string();
+  const auto r = vmap_test::run(tool + " " + quote(bone.string()) + " " + quote((d / "out.mesh").string()) +
+                                " --json --vtu " + quote((d / "cells.vtu").string()));
+  CHECK(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const int inverted = j["num_inverted"];
+  CHECK(inverted > 0);
+  std::vector<CellDataArray> cells;
+  const TetMeshData back = read_vtu((d / "cells.vtu").string(), cells);
+  CHECK(back.num_tets() == in.num_tets());
+  CHECK(back.xyz == out.xyz);
+  bool found = false;
+  for (const auto& c : cells) {
+    if (c.name != "inverted") continue;
+    found = true;
+    double sum = 0;
+    for (double v : c.values) sum += v;
+    CHECK(sum == inverted);
+    CHECK(c.values[0] == 1.0);
+  }
+  CHECK(found);
+  CHECK(cells.size() == 10);
+  fs::remove_all(d);
+}
+
 TEST_CASE("tool: bad and mismatched inputs exit 2 with a reason") {
   VOLMAP_REQUIRE_DATA(dir, "volmap/viewer-samples");
   VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
