@@ -7,9 +7,11 @@
 #include <volmap/tutte3d.hpp>
 
 #include <Eigen/Sparse>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <tbb/parallel_sort.h>
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -151,6 +153,18 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
     timings.factorization = seconds_since(start);
     start = Clock::now();
     solution = solver.solve(rhs);
+  } else if (factorization == SparseFactorization::ConjugateGradient) {
+    Eigen::ConjugateGradient<Matrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> solver;
+    start = Clock::now();
+    solver.setTolerance(1e-12);
+    solver.setMaxIterations(std::max<Eigen::Index>(1000, 10 * static_cast<Eigen::Index>(num_free)));
+    solver.compute(matrix);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) {
+      throw Error(ErrorKind::Failed, "", 0, "conjugate gradient did not converge (singular Laplacian?)");
+    }
   } else {
     Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
     start = Clock::now();

@@ -21,7 +21,10 @@ namespace volmap {
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh);
 
 enum class TutteWeights { Uniform };
-enum class SparseFactorization { LLT, LDLT };  // Eigen SimplicialLLT / SimplicialLDLT, AMD ordering
+// Eigen SimplicialLLT / SimplicialLDLT (AMD ordering), or ConjugateGradient (Jacobi preconditioner,
+// relative residual 1e-12; "factorization" time = preconditioner setup) for comparison in bench/.
+// CHOLMOD is not installed on this machine (no SuiteSparse headers), so it is not offered.
+enum class SparseFactorization { LLT, LDLT, ConjugateGradient };
 
 struct Tutte3dOptions {
   TutteWeights weights = TutteWeights::Uniform;
