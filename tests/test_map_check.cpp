@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 using namespace volmap;
@@ -205,5 +206,50 @@ TEST_CASE("duck pair on rationals written from the doubles: same verdict, also 3
   CHECK(vmap_test::run(tool + " " + quote(in_path.string()) + " " + quote(out_path.string()) + " --rationals-out " +
                        quote((d / "in_rat.txt").string()) + " --rationals-in " + quote(out_path.string()))
             .code == 2);
+  fs::remove_all(d);
+}
+
+TEST_CASE("tools on malformed or mismatched files: exit 2, one-line reason, no crash") {
+  const fs::path d = scratch();
+  const TetMeshData grid = vmap_test::kuhn_grid(2);
+  write_medit((d / "a.mesh").string(), grid);
+  TetMeshData fewer = grid;
+  fewer.tets.resize(fewer.tets.size() - 4);
+  fewer.tet_labels.resize(fewer.num_tets());
+  write_medit((d / "fewer.mesh").string(), fewer);
+  TetMeshData other = grid;  // same counts, one tet with a different vertex set
+  other.tets[0] = other.tets[0] == 26 ? 25 : 26;
+  write_medit((d / "other.mesh").string(), other);
+  std::ofstream((d / "garbage.mesh").string()) << "MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0 0 0\n";
+  const auto check = volmap_test::tool("volmap-map-check").string();
+  const auto metrics = volmap_test::tool("volmap-metrics").string();
+  for (const char* bad : {"fewer.mesh", "other.mesh", "garbage.mesh"}) {
+    INFO(bad);
+    auto r = vmap_test::run(check + " " + quote((d / "a.mesh").string()) + " " + quote((d / bad).string()) + " --json");
+    CHECK(r.code == 2);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["ok"] == false);
+    CHECK(!j["error"].get<std::string>().empty());
+    CHECK(vmap_test::run(metrics + " " + quote((d / "a.mesh").string()) + " " + quote((d / bad).string())).code == 2);
+  }
+  auto r = vmap_test::run(check + " " + quote((d / "a.mesh").string()) + " " + quote((d / "fewer.mesh").string()) + " --json");
+  CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("tet count mismatch") != std::string::npos);
+  r = vmap_test::run(check + " " + quote((d / "a.mesh").string()) + " " + quote((d / "other.mesh").string()) + " --json");
+  CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("connectivity mismatch") != std::string::npos);
+
+  // Boundary maps with bad ids (out of range, interior vertex 13) for both tools.
+  std::ofstream((d / "bad_range.txt").string()) << "0 0 0 0\n999 1 1 1\n";
+  std::ofstream((d / "interior.txt").string()) << "13 0.5 0.5 0.5\n";
+  const auto tutte = volmap_test::tool("volmap-tutte3d").string();
+  for (const char* m : {"bad_range.txt", "interior.txt"}) {
+    INFO(m);
+    CHECK(vmap_test::run(check + " " + quote((d / "a.mesh").string()) + " " + quote((d / "a.mesh").string()) +
+                         " --boundary " + quote((d / m).string()))
+              .code == 2);
+    CHECK(vmap_test::run(tutte + " " + quote((d / "a.mesh").string()) + " " + quote((d / m).string()) + " " +
+                         quote((d / "out.mesh").string()))
+              .code == 2);
+    CHECK(!fs::exists(d / "out.mesh"));
+  }
   fs::remove_all(d);
 }

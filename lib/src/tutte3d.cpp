@@ -9,7 +9,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <tbb/parallel_sort.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -26,10 +27,12 @@ double seconds_since(Clock::time_point start) {
 }  // namespace
 
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
+  // Counting sort of the 6 edges per tet by their smaller endpoint a, then a small sort + unique of
+  // each a's bucket of larger endpoints b (buckets hold ~30 entries): O(#tets), no hashing, no maps.
   const std::size_t nt = mesh.num_tets();
   const std::size_t nv = mesh.num_vertices();
-  std::vector<std::uint64_t> keys(6 * nt);
   static constexpr int kEdgeLocal[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  std::vector<std::uint32_t> offset(nv + 1, 0);
   for (std::size_t t = 0; t < nt; ++t) {
     const std::uint32_t* tet = &mesh.tets[4 * t];
     for (int k = 0; k < 4; ++k) {
@@ -39,20 +42,45 @@ std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
       }
     }
     for (int e = 0; e < 6; ++e) {
-      std::uint64_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
+      const std::uint32_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
       if (a == b) throw_bad_input("", 0, "tet " + std::to_string(t) + " repeats vertex " + std::to_string(a));
-      if (a > b) std::swap(a, b);
-      keys[6 * t + e] = (a << 32) | b;
+      ++offset[std::min(a, b) + 1];
     }
   }
-  tbb::parallel_sort(keys.begin(), keys.end());
-  std::vector<std::uint32_t> edges;
-  edges.reserve(keys.size() / 3 + 2);
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    if (i > 0 && keys[i] == keys[i - 1]) continue;
-    edges.push_back(static_cast<std::uint32_t>(keys[i] >> 32));
-    edges.push_back(static_cast<std::uint32_t>(keys[i] & 0xffffffffu));
+  for (std::size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
+  std::vector<std::uint32_t> larger(6 * nt);
+  {
+    std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::uint32_t* tet = &mesh.tets[4 * t];
+      for (int e = 0; e < 6; ++e) {
+        const std::uint32_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
+        larger[cursor[std::min(a, b)]++] = std::max(a, b);
+      }
+    }
   }
+  // Sort + unique each bucket in place; count the unique entries per vertex.
+  std::vector<std::uint32_t> unique_count(nv + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      std::uint32_t* first = larger.data() + offset[v];
+      std::uint32_t* last = larger.data() + offset[v + 1];
+      std::sort(first, last);
+      unique_count[v + 1] = static_cast<std::uint32_t>(std::unique(first, last) - first);
+    }
+  });
+  for (std::size_t v = 0; v < nv; ++v) unique_count[v + 1] += unique_count[v];
+  std::vector<std::uint32_t> edges(2 * static_cast<std::size_t>(unique_count[nv]));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      std::size_t out = 2 * static_cast<std::size_t>(unique_count[v]);
+      const std::uint32_t count = unique_count[v + 1] - unique_count[v];
+      for (std::uint32_t k = 0; k < count; ++k) {
+        edges[out++] = static_cast<std::uint32_t>(v);
+        edges[out++] = larger[offset[v] + k];
+      }
+    }
+  });
   return edges;
 }
 
