@@ -2,6 +2,9 @@
 //   volmap-run <dataset_dir> --method <tutte3d|map|tlc|executable> [--groups G1,G2] [--domains cube,tet]
 //              [--jobs N] [--timeout s] [--out results_dir] [--resume] [--keep-outputs] [--json]
 //   volmap-run report <results_dir> [--compare other_results_dir] [-o report.html] [--csv summary.csv]
+//   volmap-run list <dataset_dir> [--groups ..] [--domains ..]          (case ids, one per line)
+//   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
+//       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
 // Results: <out>/results.jsonl, one JSON object per case (see lib benchmark_runner.hpp).
 #include "tool_common.hpp"
 
@@ -88,6 +91,20 @@ int main(int argc, char** argv) {
   report->add_option("--compare", compare_dir, "a second results folder shown side by side");
   report->add_option("-o,--output", html_path, "HTML report path (default <results_dir>/report.html)");
   report->add_option("--csv", csv_path, "CSV summary path (default <results_dir>/summary.csv)");
+  auto* list = app.add_subcommand("list", "print the case ids of a dataset folder, one per line");
+  std::string list_dataset;
+  list->add_option("dataset_dir", list_dataset, "VOLMAP layout root")->required();
+  list->add_option("--groups", groups, "comma-separated groups");
+  list->add_option("--domains", domains, "comma-separated domains");
+
+  auto* one = app.add_subcommand("case", "run one case and write its record as a JSON file");
+  std::string case_dataset, case_id;
+  one->add_option("dataset_dir", case_dataset, "VOLMAP layout root")->required();
+  one->add_option("case_id", case_id, "<group>/<name>_<domain>, as printed by `list`")->required();
+  one->add_option("--method", method, "tutte3d, map, tlc, or a candidate executable")->required();
+  one->add_option("--out", out, "results folder");
+  one->add_option("--timeout", timeout, "seconds for the candidate (0 = none)")->check(CLI::NonNegativeNumber);
+  one->add_flag("--keep-outputs", keep, "keep the written meshes");
   app.require_subcommand(0, 1);
 
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
@@ -112,6 +129,29 @@ int main(int argc, char** argv) {
       volmap::write_text_atomically(html_path, volmap::render_report_html(runs, "volmap benchmark report"));
       volmap::write_text_atomically(csv_path, volmap::summary_csv(runs));
       std::cout << "report: " << fs::absolute(html_path).string() << "\nsummary: " << fs::absolute(csv_path).string() << "\n";
+      return volmap_tools::kExitOk;
+    }
+    if (list->parsed()) {
+      for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains)))
+        std::cout << c.id() << "\n";
+      return volmap_tools::kExitOk;
+    }
+    if (one->parsed()) {
+      const auto all = volmap::discover_cases(case_dataset);
+      const auto it = std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.id() == case_id; });
+      if (it == all.end()) throw volmap::Error(volmap::ErrorKind::BadInput, case_dataset, 0, "no case '" + case_id + "'");
+      volmap::RunOptions options;
+      options.out_dir = out;
+      options.tools_dir = tools_dir();
+      options.timeout_s = timeout;
+      options.keep_outputs = keep;
+      std::signal(SIGINT, on_interrupt);
+      std::signal(SIGTERM, on_interrupt);
+      const auto record = volmap::run_case(*it, volmap::resolve_method(method, options.tools_dir), options, &g_child_pids[0]);
+      const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
+      fs::create_directories(path.parent_path());
+      volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
+      std::cout << case_id << ": " << (record.certified ? "certified" : "not certified") << "\n";
       return volmap_tools::kExitOk;
     }
     if (dataset.empty() || method.empty())
