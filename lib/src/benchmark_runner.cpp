@@ -62,37 +62,26 @@ std::optional<json> parse_tool_json(const fs::path& stdout_file) {
   }
 }
 
-// Looks up the first numeric value among candidate keys (also one level down in objects).
-std::optional<double> find_number(const json& j, std::initializer_list<const char*> keys) {
-  for (const char* k : keys) {
-    auto it = j.find(k);
-    if (it != j.end() && it->is_number()) return it->get<double>();
+// A number at a JSON path ("output", "negative"), or nullopt.
+std::optional<double> number_at(const json& j, std::initializer_list<const char*> path) {
+  const json* node = &j;
+  for (const char* key : path) {
+    if (!node->is_object()) return std::nullopt;
+    auto it = node->find(key);
+    if (it == node->end()) return std::nullopt;
+    node = &*it;
   }
-  for (const auto& [name, value] : j.items()) {
-    (void)name;
-    if (!value.is_object()) continue;
-    for (const char* k : keys) {
-      auto it = value.find(k);
-      if (it != value.end() && it->is_number()) return it->get<double>();
-    }
-  }
-  return std::nullopt;
+  if (!node->is_number()) return std::nullopt;
+  return node->get<double>();
+}
+long long count_at(const json& j, std::initializer_list<const char*> path) {
+  const auto v = number_at(j, path);
+  return v ? static_cast<long long>(*v) : -1;
 }
 
-// Weighted mean E of one energy from volmap-metrics --json: accepts {"mips3d":{"E":..}} or
-// {"mips3d":{"mean":..}} or {"energies":{"mips3d":{...}}}.
+// Weighted mean E of one energy from volmap-metrics --json: {"energies":{"mips3d":{"mean":..}}}.
 std::optional<double> energy_mean(const json& metrics, const char* energy) {
-  const json* scope = &metrics;
-  if (metrics.contains("energies") && metrics["energies"].is_object()) scope = &metrics["energies"];
-  auto it = scope->find(energy);
-  if (it == scope->end()) return std::nullopt;
-  if (it->is_number()) return it->get<double>();
-  if (!it->is_object()) return std::nullopt;
-  for (const char* k : {"E", "mean", "weighted_mean", "avg"}) {
-    auto v = it->find(k);
-    if (v != it->end() && v->is_number()) return v->get<double>();
-  }
-  return std::nullopt;
+  return number_at(metrics, {"energies", energy, "mean"});
 }
 
 void append_line_atomically(const std::string& path, const std::string& line) {
@@ -244,15 +233,18 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
                                           checker_timeout, (work / "check.json").string(), (work / "check.err").string(),
                                           child_pid);
   const auto check_json = parse_tool_json(work / "check.json");
+  // volmap-map-check --json: {"certified":..,"num_tets":..,"output":{"positive","zero","negative"},..}
+  bool checker_certified = false;
   if (check_json) {
-    r.positive = static_cast<long long>(find_number(*check_json, {"positive"}).value_or(-1));
-    r.zero = static_cast<long long>(find_number(*check_json, {"zero"}).value_or(-1));
-    r.negative = static_cast<long long>(find_number(*check_json, {"negative"}).value_or(-1));
-    r.tets_out = static_cast<long long>(find_number(*check_json, {"num_tets", "tets", "tets_out"}).value_or(-1));
+    r.positive = count_at(*check_json, {"output", "positive"});
+    r.zero = count_at(*check_json, {"output", "zero"});
+    r.negative = count_at(*check_json, {"output", "negative"});
+    r.tets_out = count_at(*check_json, {"num_tets"});
+    checker_certified = check_json->value("certified", false);
   }
-  // Certified = the exact checker says valid (exit 0) with all counts consistent.
+  // Certified = the exact checker ran, exited 0 and says certified, with consistent counts.
   r.certified = check.started && !check.timed_out && check.term_signal == 0 && check.exit_code == 0 &&
-                r.zero == 0 && r.negative == 0;
+                checker_certified && r.zero == 0 && r.negative == 0 && r.positive == r.tets_out;
   if (!check.started || check.term_signal != 0 || check.timed_out || check.exit_code == 2) {
     const std::string reason = first_line(work / "check.err");
     r.failure = "check failed to run" + (reason.empty() ? std::string() : ": " + reason);
@@ -268,7 +260,7 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
       r.symmetric_dirichlet = energy_mean(*m, "symmetric_dirichlet");
       r.arap = energy_mean(*m, "arap");
       r.mips3d = energy_mean(*m, "mips3d");
-      if (r.tets_out < 0) r.tets_out = static_cast<long long>(find_number(*m, {"num_tets", "tets"}).value_or(-1));
+      if (r.tets_out < 0) r.tets_out = count_at(*m, {"num_tets"});
     }
   }
   // Growth is measured against the original (unrefined) input's tet count.
