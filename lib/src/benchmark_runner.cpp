@@ -284,6 +284,15 @@ std::vector<CaseRecord> run_benchmark(const std::vector<BenchmarkCase>& cases, c
                                       std::atomic<int>* child_pids) {
   fs::create_directories(options.out_dir);
   const std::string results = (fs::path(options.out_dir) / "results.jsonl").string();
+  // A runner killed mid-write leaves a torn last line without newline: terminate it, so the next
+  // record starts on a line of its own (the torn one is skipped by readers and its case redone).
+  {
+    std::ifstream in(results, std::ios::binary | std::ios::ate);
+    if (in && in.tellg() > 0) {
+      in.seekg(-1, std::ios::end);
+      if (in.get() != '\n') append_line_atomically(results, "");
+    }
+  }
   std::set<std::string> done;
   for (const auto& r : read_results(results))
     if (r.method == method.name) done.insert(r.case_id);
