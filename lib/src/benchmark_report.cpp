@@ -122,7 +122,7 @@ std::string success_bars(const std::vector<MethodRun>& runs) {
       rates[k][key] = row.success_rate;
     }
   const double L = 48, T = 30, B = 60, H = 300, group_w = std::max(40.0, 14.0 * runs.size() + 16);
-  const double W = L + 16 + group_w * std::max<std::size_t>(keys.size(), 1);
+  const double W = std::max(520.0, L + 170 + group_w * std::max<std::size_t>(keys.size(), 1));
   std::ostringstream svg;
   svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' class='plot'>"
       << "<text x='" << W / 2 << "' y='18' text-anchor='middle' class='title'>certified maps per group and domain (%)</text>";
@@ -163,7 +163,7 @@ std::vector<SummaryRow> summarize(const MethodRun& run) {
     row.method = run.label;
     row.group = key.first;
     row.domain = key.second;
-    std::vector<double> times, growths, mips, conf;
+    std::vector<double> times, growths, mips, conf, mips_all, conf_all;
     for (const auto* r : recs) {
       ++row.cases;
       if (r->certified) ++row.certified;
@@ -171,6 +171,8 @@ std::vector<SummaryRow> summarize(const MethodRun& run) {
       if (r->term_signal != 0) ++row.crashed;
       times.push_back(r->time_s);
       growths.push_back(r->growth);
+      if (r->mips3d) mips_all.push_back(*r->mips3d);
+      if (r->conformal) conf_all.push_back(*r->conformal);
       if (r->certified && r->mips3d) mips.push_back(*r->mips3d);
       if (r->certified && r->conformal) conf.push_back(*r->conformal);
     }
@@ -179,12 +181,15 @@ std::vector<SummaryRow> summarize(const MethodRun& run) {
     row.max_time_s = times.empty() ? 0 : *std::max_element(times.begin(), times.end());
     row.median_growth = median(growths);
     row.max_growth = growths.empty() ? 1 : *std::max_element(growths.begin(), growths.end());
-    double s = 0;
-    for (double v : mips) s += v;
-    row.mean_mips3d = mips.empty() ? 0 : s / mips.size();
-    s = 0;
-    for (double v : conf) s += v;
-    row.mean_conformal = conf.empty() ? 0 : s / conf.size();
+    auto mean = [](const std::vector<double>& v) {
+      double sum = 0;
+      for (double x : v) sum += x;
+      return v.empty() ? 0.0 : sum / double(v.size());
+    };
+    row.mean_mips3d = mean(mips);
+    row.mean_conformal = mean(conf);
+    row.mean_mips3d_all = mean(mips_all);
+    row.mean_conformal_all = mean(conf_all);
     rows.push_back(row);
   }
   return rows;
@@ -193,13 +198,14 @@ std::vector<SummaryRow> summarize(const MethodRun& run) {
 std::string summary_csv(const std::vector<MethodRun>& runs) {
   std::ostringstream csv;
   csv << "method,group,domain,cases,certified,success_rate,timed_out,crashed,median_time_s,max_time_s,"
-         "median_growth,max_growth,mean_mips3d_certified,mean_conformal_certified\n";
+         "median_growth,max_growth,mean_mips3d_certified,mean_conformal_certified,mean_mips3d_all,mean_conformal_all\n";
   for (const auto& run : runs)
     for (const auto& r : summarize(run))
       csv << r.method << ',' << r.group << ',' << r.domain << ',' << r.cases << ',' << r.certified << ','
           << fmt(r.success_rate, 6) << ',' << r.timed_out << ',' << r.crashed << ',' << fmt(r.median_time_s, 6) << ','
           << fmt(r.max_time_s, 6) << ',' << fmt(r.median_growth, 6) << ',' << fmt(r.max_growth, 6) << ','
-          << fmt(r.mean_mips3d, 6) << ',' << fmt(r.mean_conformal, 6) << '\n';
+          << fmt(r.mean_mips3d, 6) << ',' << fmt(r.mean_conformal, 6) << ',' << fmt(r.mean_mips3d_all, 6) << ','
+          << fmt(r.mean_conformal_all, 6) << '\n';
   return csv.str();
 }
 
@@ -215,15 +221,17 @@ std::string render_report_html(const std::vector<MethodRun>& runs, const std::st
           " bit-exact) passed on what the method wrote. Energies are VOLMAP's output-volume-weighted means.</p>";
   html << "<table><tr><th>method</th><th>group</th><th>domain</th><th>cases</th><th>certified</th><th>%</th>"
           "<th>timeouts</th><th>crashes</th><th>median s</th><th>max s</th><th>median growth</th><th>max growth</th>"
-          "<th>mean MIPS3D</th><th>mean conformal</th></tr>";
+          "<th>mean MIPS3D<br>certified</th><th>mean conformal<br>certified</th><th>mean MIPS3D<br>all maps</th>"
+          "<th>mean conformal<br>all maps</th></tr>";
   for (const auto& run : runs)
     for (const auto& r : summarize(run))
       html << "<tr><td>" << escape(r.method) << "</td><td>" << escape(r.group) << "</td><td>" << escape(r.domain)
            << "</td><td>" << r.cases << "</td><td>" << r.certified << "</td><td>" << fmt(100 * r.success_rate, 4)
            << "</td><td>" << r.timed_out << "</td><td>" << r.crashed << "</td><td>" << fmt(r.median_time_s)
            << "</td><td>" << fmt(r.max_time_s) << "</td><td>" << fmt(r.median_growth, 4) << "</td><td>"
-           << fmt(r.max_growth, 4) << "</td><td>" << fmt(r.mean_mips3d, 4) << "</td><td>" << fmt(r.mean_conformal, 4)
-           << "</td></tr>";
+           << fmt(r.max_growth, 4) << "</td><td>" << (r.certified ? fmt(r.mean_mips3d, 4) : "–") << "</td><td>"
+           << (r.certified ? fmt(r.mean_conformal, 4) : "–") << "</td><td>" << fmt(r.mean_mips3d_all, 4) << "</td><td>"
+           << fmt(r.mean_conformal_all, 4) << "</td></tr>";
   html << "</table><div class='plots'>" << success_bars(runs);
 
   auto collect = [&](auto getter) {

@@ -20,6 +20,7 @@ struct SummaryRow {
   std::size_t cases = 0, certified = 0, timed_out = 0, crashed = 0;
   double success_rate = 0, median_time_s = 0, max_time_s = 0, median_growth = 1, max_growth = 1;
   double mean_mips3d = 0, mean_conformal = 0;  // over certified cases with metrics (0 when none)
+  double mean_mips3d_all = 0, mean_conformal_all = 0;  // over every case with metrics
 };
 std::vector<SummaryRow> summarize(const MethodRun& run);
 
