@@ -145,6 +145,44 @@ TEST_CASE("build errors name the offending element") {
   CHECK(build_error(bad_size).find("not a multiple of 4") != std::string::npos);
 }
 
+TEST_CASE("large meshes (parallel matching) report the same first error as a serial pass") {
+  TetMeshData d = generate_kuhn_grid(34, 34, 34);  // 235 824 tets: parallel path
+  REQUIRE(d.num_tets() >= 200000);
+  {
+    const TetMesh big(d);  // parallel matching: symmetric opp with equal vertex sets, right boundary
+    CHECK(big.check_invariants().ok);
+    CHECK(big.boundary_half_faces().size() == analyze_topology(d).num_boundary_faces);
+    CHECK(big.boundary_half_faces().size() == 12 * 34 * 34);
+  }
+  // Two inverted tets far apart: the error names the one met first in (vertex, face) order,
+  // the same as analyze_topology's serial pass.
+  for (std::size_t t : {d.num_tets() - 7, std::size_t(1000)}) std::swap(d.tets[4 * t], d.tets[4 * t + 1]);
+  const TopologyReport r = analyze_topology(d);
+  REQUIRE(r.num_inconsistent_faces >= 5);  // 4 + 1..4 (the last tets touch the boundary)
+  const std::string first = "inconsistent orientation: tets " + std::to_string(r.example_inconsistent_face / 4) + " and ";
+  std::string got = build_error(d);
+  CHECK(got.rfind(first, 0) == 0);
+  // A third tet on an interior face of tet 1000 (new apex far away), appended at the end.
+  d = generate_kuhn_grid(34, 34, 34);
+  const TetMesh valid(d);
+  int i = 0;
+  while (valid.half_face_is_boundary(HalfFaceId(TetId(1000), i))) ++i;
+  const auto fv = valid.half_face_vertices(HalfFaceId(TetId(1000), i));
+  const std::uint32_t apex = std::uint32_t(d.num_vertices());
+  d.xyz.insert(d.xyz.end(), {-50.0, -50.0, -50.0});
+  d.tets.insert(d.tets.end(), {fv[0].idx(), fv[2].idx(), fv[1].idx(), apex});
+  d.vertex_labels.push_back(0);
+  d.tet_labels.push_back(0);
+  const std::size_t extra = d.num_tets() - 1;
+  const TetId across = valid.tet_neighbor(TetId(1000), i);
+  std::vector<std::uint32_t> three = {1000, across.idx(), std::uint32_t(extra)};
+  std::sort(three.begin(), three.end());
+  got = build_error(d);
+  INFO(got);
+  CHECK(got.find("is shared by 3 tets (" + std::to_string(three[0]) + ", " + std::to_string(three[1]) + ", " +
+                 std::to_string(three[2]) + ")") != std::string::npos);
+}
+
 TEST_CASE("Kuhn grid: generator is positive and the structure matches brute force") {
   const std::size_t n = 4;
   const TetMeshData d = generate_kuhn_grid(n, n, n);

@@ -9,6 +9,9 @@
 
 #include <volmap/local_tables.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +41,10 @@ inline void face_key(const std::uint32_t* p, int i, std::uint32_t& min_v, std::u
 // once per distinct face, in increasing (min, mid, max) order; entries inside a group sorted by hf.
 // keys[k] = (mid << 32) | max; hf_parity[k] = hf | parity << 31. Tets with skip(t) true are ignored.
 // Vertex ids must be < num_vertices (checked by the caller).
-template <class Skip, class OnGroup>
+// Parallel = true sorts and reports the buckets on several threads (TBB): on_group must then be
+// safe to call concurrently for different min vertices (buckets are never split between threads,
+// and one thread visits its buckets in increasing order).
+template <bool Parallel = false, class Skip, class OnGroup>
 void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t num_vertices, Skip&& skip,
                  OnGroup&& on_group) {
   std::vector<std::uint32_t> offsets(num_vertices + 2, 0);
@@ -71,10 +77,11 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
   auto less = [](std::uint64_t ka, std::uint32_t ha, std::uint64_t kb, std::uint32_t hb) {
     return ka < kb || (ka == kb && hf_of(ha) < hf_of(hb));
   };
+  auto process = [&](std::size_t first_vertex, std::size_t last_vertex) {
   std::vector<std::uint32_t> perm;
   std::vector<std::uint64_t> tmp_keys;
   std::vector<std::uint32_t> tmp_hfp;
-  for (std::size_t v = 0; v < num_vertices; ++v) {
+  for (std::size_t v = first_vertex; v < last_vertex; ++v) {
     const std::size_t begin = offsets[v], end = offsets[v + 1];
     if (begin == end) continue;
     std::uint64_t* k = keys.data() + begin;
@@ -111,6 +118,13 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
       on_group(std::uint32_t(v), k + g, h + g, e - g);
       g = e;
     }
+  }
+  };
+  if constexpr (Parallel) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices, 2048),
+                      [&](const tbb::blocked_range<std::size_t>& r) { process(r.begin(), r.end()); });
+  } else {
+    process(0, num_vertices);
   }
 }
 

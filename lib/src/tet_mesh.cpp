@@ -9,6 +9,7 @@
 #include "face_grouping.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <string>
 
 namespace volmap {
@@ -74,23 +75,39 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
   tv_ = data.tets;
   xyz_ = data.xyz;
   opp_.assign(4 * nt, kBoundary);
-  detail::group_faces(
-      tv, nt, nv, [](std::size_t) { return false; },
-      [&](std::uint32_t m, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
-        if (n == 1) return;
-        const std::uint32_t a = std::uint32_t(keys[0] >> 32), b = std::uint32_t(keys[0]);
-        if (n > 2) {
-          std::string tets;
-          for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(detail::hf_of(g[k]) >> 2);
-          bad("non-manifold face " + triple(m, a, b) + " is shared by " + std::to_string(n) + " tets (" + tets + ")");
-        }
-        const std::uint32_t h0 = detail::hf_of(g[0]), h1 = detail::hf_of(g[1]);
-        if (detail::parity_of(g[0]) == detail::parity_of(g[1]))
-          bad("inconsistent orientation: tets " + std::to_string(h0 >> 2) + " and " + std::to_string(h1 >> 2) +
-              " share face " + triple(m, a, b) + " with the same winding");
-        opp_[h0] = h1;
-        opp_[h1] = h0;
-      });
+  // Buckets are matched in parallel for big meshes; the reported error is the first one in
+  // (smallest vertex, face) order, exactly as a serial pass would report it.
+  std::mutex error_mutex;
+  std::uint32_t error_vertex = kNone;
+  std::string error;
+  auto on_group = [&](std::uint32_t m, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
+    if (n == 1) return;
+    const std::uint32_t a = std::uint32_t(keys[0] >> 32), b = std::uint32_t(keys[0]);
+    std::string why;
+    const std::uint32_t h0 = detail::hf_of(g[0]), h1 = detail::hf_of(g[1]);
+    if (n > 2) {
+      std::string tets;
+      for (std::size_t k = 0; k < n; ++k) tets += (k ? ", " : "") + std::to_string(detail::hf_of(g[k]) >> 2);
+      why = "non-manifold face " + triple(m, a, b) + " is shared by " + std::to_string(n) + " tets (" + tets + ")";
+    } else if (detail::parity_of(g[0]) == detail::parity_of(g[1])) {
+      why = "inconsistent orientation: tets " + std::to_string(h0 >> 2) + " and " + std::to_string(h1 >> 2) +
+            " share face " + triple(m, a, b) + " with the same winding";
+    } else {
+      opp_[h0] = h1;
+      opp_[h1] = h0;
+      return;
+    }
+    std::lock_guard<std::mutex> lock(error_mutex);
+    if (m < error_vertex) {
+      error_vertex = m;
+      error = std::move(why);
+    }
+  };
+  if (nt >= 200000)
+    detail::group_faces<true>(tv, nt, nv, [](std::size_t) { return false; }, on_group);
+  else
+    detail::group_faces<false>(tv, nt, nv, [](std::size_t) { return false; }, on_group);
+  if (error_vertex != kNone) bad(error);
   v2h_.assign(nv, kNone);
   for (std::size_t h = 0; h < 4 * nt; ++h) v2h_[tv_[h]] = std::uint32_t((h & ~std::size_t(3)) | ((h + 1) & 3));
   for (std::size_t h = 0; h < 4 * nt; ++h) {
