@@ -131,6 +131,7 @@ class FaceLayer {
     }
   }
   recolor(faces, count, faceColors) {
+    if (!this.mesh) return;  // nothing drawn yet
     const col = this.col;
     for (let k = 0; k < count; k++) {
       const f = faces[k];
@@ -195,6 +196,7 @@ function main() {
     field: fields.find((f) => f.key === meta.initial_field) || fields[0] || null,
     lo: 0, hi: 1,
     weighted: false,
+    log: false,
     slices: [0, 1, 2].map(() => ({ on: false, value: 0.5, flip: false })),
     space: 'source',
     thrOn: false, thr: 0,
@@ -239,15 +241,20 @@ function main() {
   // Per-face colours (tet colour, or chart colour on boundary faces).
   const faceColors = new Uint8Array(12 * nt);
   const tetColor = new Uint8Array(3 * nt);
+  // Position of a value on the colour scale, in [0,1] (log scale: log1p of the distance to lo).
+  function scaleOf(v) {
+    const span = state.hi > state.lo ? state.hi - state.lo : 1;
+    if (state.log) return Math.log1p(Math.max(0, v - state.lo)) / Math.log1p(span);
+    return (v - state.lo) / span;
+  }
   function computeColors() {
     const rgb = [0, 0, 0];
-    const span = state.hi > state.lo ? state.hi - state.lo : 1;
     for (let t = 0; t < nt; t++) {
       let c;
       if (flags[t] & FLAG_INVERTED) c = COLOR_INVERTED;
       else if (flags[t] & FLAG_DEGENERATE) c = COLOR_DEGENERATE;
       else if (state.field) {
-        viridis((displayValues[t] - state.lo) / span, rgb, 0);
+        viridis(scaleOf(displayValues[t]), rgb, 0);
         c = rgb;
       } else c = COLOR_NEUTRAL;
       tetColor[3 * t] = c[0]; tetColor[3 * t + 1] = c[1]; tetColor[3 * t + 2] = c[2];
@@ -284,7 +291,8 @@ function main() {
     view.scene = new THREE.Scene();
     view.scene.background = new THREE.Color(0xf4f4f6);
     view.camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);
-    view.camera.position.set(0, 0, 3.4);
+    view.camera.position.set(1.45, 1.1, 3.35);  // oblique: a cube domain shows three faces
+    view.camera.lookAt(0, 0, 0);
     view.scene.add(view.camera);
     view.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
     const light = new THREE.DirectionalLight(0xffffff, 0.9);
@@ -445,10 +453,10 @@ function main() {
   function updatePlots() {
     const f = state.field;
     const label = f ? f.label : 'no values';
-    drawColorBar($('vm-colorbar'), state.lo, state.hi, label, true);
-    const hist = f ? computeHistogram(displayValues, validForField, state.weighted ? weightsArray() : null, state.lo, state.hi, 40)
+    drawColorBar($('vm-colorbar'), state.lo, state.hi, label + (state.log ? ' (log)' : ''), true);
+    const hist = f ? computeHistogram(displayValues, validForField, state.weighted ? weightsArray() : null, 40, scaleOf)
                    : { bins: new Float64Array(40), total: 0, overflow: 0 };
-    drawHistogram($('vm-histogram'), hist, state.lo, state.hi, state.weighted);
+    drawHistogram($('vm-histogram'), hist, state.lo, state.hi, state.weighted, state.log);
     api.histogram = { bins: Array.from(hist.bins), total: hist.total, weighted: state.weighted, field: f ? f.key : null };
     $('vm-hist-note').textContent = f && f.valid_only ? 'valid tets only' : '';
     const thr = $('vm-thr');
@@ -458,6 +466,8 @@ function main() {
   }
   function selectField(key) {
     state.field = fields.find((f) => f.key === key) || null;
+    state.log = !!(state.field && state.field.worse === 'high');
+    $('vm-log').checked = state.log;
     prepareField();
     [state.lo, state.hi] = defaultRange();
     state.thr = state.field && state.field.worse === 'low' ? state.hi : state.lo;
@@ -574,6 +584,7 @@ function main() {
   });
   document.querySelectorAll('input[name=vm-space]').forEach((r) => r.addEventListener('change', () => { state.space = r.value; updateGeometry(); }));
   $('vm-field').addEventListener('change', () => selectField($('vm-field').value));
+  $('vm-log').addEventListener('change', () => { state.log = $('vm-log').checked; updatePlots(); recolorAll(); });
   $('vm-weighted').addEventListener('change', () => { state.weighted = $('vm-weighted').checked; updatePlots(); });
   const rangeChanged = () => {
     const lo = parseFloat($('vm-lo').value), hi = parseFloat($('vm-hi').value);

@@ -48,24 +48,25 @@ export function drawColorBar(canvas, lo, hi, label, showInvalid) {
 
 // Histogram of `values` over [lo, hi] (values above hi land in the last bin, below lo in the
 // first), optionally weighted; only tets with include[t] != 0. Returns the bins for inspection.
-export function computeHistogram(values, include, weights, lo, hi, numBins) {
+// scaleOf(v) maps a value to [0,1] on the colour scale (linear or log); bins are equal on that scale.
+export function computeHistogram(values, include, weights, numBins, scaleOf) {
   const bins = new Float64Array(numBins);
-  const span = hi > lo ? hi - lo : 1;
   let total = 0, overflow = 0;
   for (let t = 0; t < values.length; t++) {
     if (!include[t]) continue;
     let v = values[t];
     if (Number.isNaN(v)) continue;
     const w = weights ? Math.abs(weights[t]) : 1;
-    let b = Math.floor((v - lo) / span * numBins);
+    const x = scaleOf(v);
+    let b = Math.floor(x * numBins);
     if (b < 0) b = 0;
-    if (b >= numBins) { b = numBins - 1; if (v > hi) overflow += w; }
+    if (b >= numBins) { b = numBins - 1; if (x > 1) overflow += w; }
     bins[b] += w; total += w;
   }
   return { bins, total, overflow };
 }
 
-export function drawHistogram(canvas, hist, lo, hi, weighted) {
+export function drawHistogram(canvas, hist, lo, hi, weighted, log) {
   const { ctx, w, h } = fitCanvas(canvas);
   ctx.clearRect(0, 0, w, h);
   const padB = 16, padT = 14, x0 = 4, x1 = w - 4;
@@ -86,6 +87,7 @@ export function drawHistogram(canvas, hist, lo, hi, weighted) {
   ctx.fillStyle = '#222'; ctx.font = '11px sans-serif'; ctx.textBaseline = 'top';
   ctx.textAlign = 'left'; ctx.fillText(fmt(lo), x0, h - padB + 3);
   ctx.textAlign = 'right'; ctx.fillText(`≥ ${fmt(hi)}`, x1, h - padB + 3);
+  if (log) { ctx.textAlign = 'center'; ctx.fillText('log scale', (x0 + x1) / 2, h - padB + 3); }
   ctx.textAlign = 'left'; ctx.textBaseline = 'top';
   const share = hist.total > 0 ? (100 * max / hist.total).toFixed(1) : '0';
   ctx.fillText(`${weighted ? 'volume share' : 'tets'}: peak bin ${share}%` +

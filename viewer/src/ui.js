@@ -41,7 +41,8 @@ export function buildPage(meta, fieldOptions, hasCharts) {
       ${hasCharts ? '<label><input type="checkbox" id="vm-charts">charts on boundary</label>' : ''}</div>
     <canvas id="vm-colorbar" style="height:46px"></canvas>
     <div class="row">range <input type="number" id="vm-lo" step="any"> – <input type="number" id="vm-hi" step="any">
-      <button id="vm-range-reset" title="default range">reset</button></div>
+      <button id="vm-range-reset" title="default range">reset</button>
+      <label><input type="checkbox" id="vm-log">log</label></div>
     <h2>Histogram</h2>
     <canvas id="vm-histogram" style="height:130px"></canvas>
     <div class="row"><label><input type="checkbox" id="vm-weighted">volume-weighted</label>
