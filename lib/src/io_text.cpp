@@ -17,6 +17,12 @@ std::string read_whole_file(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
   std::string data;
+  // One read of the announced size, then whatever else arrives (pipes, growing files).
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > 0) {
+    data.resize(static_cast<std::size_t>(size));
+    data.resize(std::fread(data.data(), 1, data.size(), f));
+  }
   char chunk[1 << 16];
   std::size_t got;
   while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.append(chunk, got);
@@ -40,18 +46,6 @@ bool parse_double(std::string_view text, double& value) {
   const auto result = std::from_chars(first, last, value, std::chars_format::general);
   if (result.ec != std::errc() || result.ptr != last) return false;
   return std::isfinite(value);
-}
-
-bool parse_int64(std::string_view text, std::int64_t& value) {
-  if (text.empty() || text.size() > 20) return false;
-  if (text[0] == '+') {
-    text.remove_prefix(1);
-    if (text.empty() || text[0] == '-') return false;
-  }
-  const char* first = text.data();
-  const char* last = first + text.size();
-  const auto result = std::from_chars(first, last, value, 10);
-  return result.ec == std::errc() && result.ptr == last;
 }
 
 std::string quote(std::string_view text) {

@@ -29,7 +29,11 @@ struct Token {
   std::size_t line = 0;  // 1-based line of the token's first character
 };
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool is_space(char c) {
+  // ' ' \t \n \v \f \r: one compare for the common printable case.
+  const unsigned char u = static_cast<unsigned char>(c);
+  return u == ' ' || (u >= '\t' && u <= '\r');
+}
 inline bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 
 // Whitespace tokenizer. With `hash_comments`, '#' starts a comment that runs to the end of the line.
@@ -43,7 +47,7 @@ class Tokenizer {
     skip_space();
     if (pos_ == end_) return false;
     const char* start = pos_;
-    while (pos_ != end_ && !is_space(*pos_) && !(hash_comments_ && *pos_ == '#')) ++pos_;
+    while (pos_ != end_ && kind(*pos_) == kTokenChar) ++pos_;
     token.text = std::string_view(start, static_cast<std::size_t>(pos_ - start));
     token.line = line_;
     last_line_ = line_;
@@ -60,15 +64,14 @@ class Tokenizer {
   // Skips whitespace and comments; afterwards position() is at the next token (or the end).
   void skip_space() {
     while (pos_ != end_) {
-      const char c = *pos_;
-      if (c == '\n') {
+      const unsigned k = kind(*pos_);
+      if (k == kTokenChar) break;
+      if (k == kNewline) {
         ++line_, ++pos_;
-      } else if (is_space(c)) {
-        ++pos_;
-      } else if (hash_comments_ && c == '#') {
+      } else if (k == kComment) {
         while (pos_ != end_ && *pos_ != '\n') ++pos_;
       } else {
-        break;
+        ++pos_;
       }
     }
   }
@@ -91,6 +94,14 @@ class Tokenizer {
   }
 
  private:
+  enum : unsigned char { kTokenChar = 0, kSpace = 1, kNewline = 2, kComment = 3 };
+  unsigned kind(char c) const {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u > ' ' && u != '#') return kTokenChar;
+    if (u == '\n') return kNewline;
+    if (u == '#') return hash_comments_ ? kComment : kTokenChar;
+    return (u == ' ' || (u >= '\t' && u <= '\r')) ? kSpace : kTokenChar;
+  }
   const char* begin_;
   const char* pos_;
   const char* end_;
@@ -102,7 +113,22 @@ class Tokenizer {
 // Strict parsers: the whole token must be a number; a leading '+' is accepted; NaN, Inf, out-of-range
 // and overlong tokens are rejected. Return false instead of throwing so callers word the error.
 bool parse_double(std::string_view text, double& value);
-bool parse_int64(std::string_view text, std::int64_t& value);
+// Integers: optional sign and 1..18 decimal digits (hand-rolled: the hot path of tet blocks).
+inline bool parse_int64(std::string_view text, std::int64_t& value) {
+  std::size_t i = 0;
+  bool negative = false;
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) negative = text[0] == '-', i = 1;
+  const std::size_t digits = text.size() - i;
+  if (digits == 0 || digits > 18) return false;
+  std::int64_t v = 0;
+  for (; i < text.size(); ++i) {
+    const unsigned d = static_cast<unsigned char>(text[i]) - unsigned('0');
+    if (d > 9) return false;
+    v = v * 10 + static_cast<std::int64_t>(d);
+  }
+  value = negative ? -v : v;
+  return true;
+}
 
 // Throwing variants: Error(BadInput) at path:line "<what>: expected a finite number, found '<tok>'".
 double expect_double(const Token& token, const std::string& path, const char* what);
