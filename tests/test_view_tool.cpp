@@ -171,7 +171,8 @@ TEST_CASE("volmap-view on the viewer samples: VOLMAP figures and exact inverted 
   CHECK(j["fields"]["mips3d"]["weighted_mean"].get<double>() == doctest::Approx(6.88193).epsilon(5e-6));
   CHECK(j["fields"]["mips3d"]["min"].get<double>() == doctest::Approx(1.00859).epsilon(5e-6));
 
-  // The hand polycube pair is all-negative; relative to its source, 95 tets invert and 3 degenerate.
+  // The hand and max polycube pairs are all-negative; relative to the source (volmap-map-check's oracle):
+  // hand 95 inverted + 3 degenerate, max 45 + 198.
   const auto hand_in = volmap_test::data_file("volmap/viewer-samples/hand_aigerman.mesh");
   const auto hand_out = volmap_test::data_file("volmap/viewer-samples/hand_pc_aigerman.mesh");
   if (!hand_in.empty() && !hand_out.empty()) {
@@ -180,6 +181,15 @@ TEST_CASE("volmap-view on the viewer samples: VOLMAP figures and exact inverted 
     j = nlohmann::json::parse(r.out);
     CHECK(j["num_inverted"] == 95);
     CHECK(j["num_degenerate"] == 3);
+  }
+  const auto max_in = volmap_test::data_file("volmap/viewer-samples/max.mesh");
+  const auto max_out = volmap_test::data_file("volmap/viewer-samples/max_pc.mesh");
+  if (!max_in.empty() && !max_out.empty()) {
+    r = run_view(q(max_in) + " " + q(max_out) + " -o " + q(dir / "max.html") + " --json" + bundle, dir);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    j = nlohmann::json::parse(r.out);
+    CHECK(j["num_inverted"] == 45);
+    CHECK(j["num_degenerate"] == 198);
   }
   fs::remove_all(dir);
 }

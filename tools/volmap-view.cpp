@@ -3,8 +3,8 @@
 //   volmap-view <in.mesh> <out.mesh> [-o view.html] [--energy mips3d]   volume map (two linked views)
 //   volmap-view <in.mesh> --map boundary.txt [-o view.html]              boundary map (mapped surface)
 //   volmap-view <in.mesh> [-o view.html]                                 one mesh
-// Per-tet values (Jacobian singular values, VOLMAP energies, quality, volumes) are computed here in
-// C++; inverted/degenerate flags are exact (volmap predicates, batch orient3d_tets). The viewer
+// Per-tet values (VOLMAP energies and quality from volmap/metrics.hpp, Jacobian singular values and
+// volumes; see view_metrics_adapter.hpp) are computed in C++; inverted/degenerate flags are exact (volmap predicates, batch orient3d_tets). The viewer
 // bundle (viewer/dist/viewer.js: three.js + viewer code, built by `npm ci && npm run build` in
 // viewer/) is read at run time from --bundle, else $VOLMAP_VIEWER_BUNDLE, else the path of this
 // source tree baked in at compile time (<repo>/viewer/dist/viewer.js, from __FILE__).
@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
       bundle_path = env && *env ? env : default_bundle_path();
     }
     const std::string bundle = read_bundle(bundle_path);
-    if (!(upper > 1)) throw Error(ErrorKind::BadInput, "", 0, "--upper must be > 1");
+    if (!(upper >= 6) || !std::isfinite(upper)) throw Error(ErrorKind::BadInput, "", 0, "--upper must be a finite number >= 6");
 
     const TetMeshData source = read_view_mesh(inputs[0]);
     ViewData view;
@@ -160,13 +160,15 @@ int main(int argc, char** argv) {
                                                   (si <= 0 ? kViewSourceNonPositive : 0));
       }
       // Per-tet Jacobian singular values, energies and quality from the metrics module.
-      const volmap_view::ViewMetrics m = volmap_view::compute_view_metrics(source, target.xyz);
+      const volmap_view::ViewMetrics m = volmap_view::compute_view_metrics(source, target.xyz, source_signs, upper);
       view.sigma = m.sigma;
-      view.fields.push_back(field_from("conformal", "Conformal", 1, upper, m.conformal, true, true));
-      view.fields.push_back(field_from("dirichlet", "Dirichlet", 3, upper, m.dirichlet, true, true));
-      view.fields.push_back(field_from("symdir", "Symmetric Dirichlet", 6, upper, m.symmetric_dirichlet, true, true));
-      view.fields.push_back(field_from("arap", "ARAP", 0, upper, m.arap, true, true));
-      view.fields.push_back(field_from("mips3d", "MIPS3D", 1, upper, m.mips3d, true, true));
+      using volmap::Energy;
+      auto energy = [&](Energy e) { return m.energy[static_cast<int>(e)]; };
+      view.fields.push_back(field_from("conformal", "Conformal", 1, upper, energy(Energy::Conformal), true, true));
+      view.fields.push_back(field_from("dirichlet", "Dirichlet", 3, upper, energy(Energy::Dirichlet), true, true));
+      view.fields.push_back(field_from("symdir", "Symmetric Dirichlet", 6, upper, energy(Energy::SymmetricDirichlet), true, true));
+      view.fields.push_back(field_from("arap", "ARAP", 0, upper, energy(Energy::Arap), true, true));
+      view.fields.push_back(field_from("mips3d", "MIPS3D", 1, upper, energy(Energy::Mips3d), true, true));
       view.fields.push_back(field_from("quality_out", "quality 3r/R (target)", 0, 1, m.quality_out, false, false));
       view.fields.push_back(field_from("quality_in", "quality 3r/R (source)", 0, 1, m.quality_in, false, false));
       if (!map_path.empty()) {
