@@ -5,6 +5,7 @@
 # skips with a message (exit 0) when either is absent. Builds viewer/dist/viewer.js when missing,
 # writes pages with build/bin/volmap-view from ../shared/data (each skipped when its data is absent)
 # and runs view.test.mjs on each; screenshots and pages land in <build>/view-test/.
+# $VOLMAP_VIEW_CASES (space-separated names) runs a subset: bunny-map hand-map bunny-cube-boundary buste-mesh.
 # Last line: "N passed, N failed".
 set -euo pipefail
 VIEWER=$(cd "$(dirname "$0")/.." && pwd)
@@ -26,6 +27,7 @@ mkdir -p "$OUT"
 passed=0; failed=0; skipped=0
 run_case() {  # name, expect-map flag, volmap-view args...
   local name=$1 flag=$2; shift 2
+  if [ -n "${VOLMAP_VIEW_CASES:-}" ] && [[ " $VOLMAP_VIEW_CASES " != *" $name "* ]]; then return; fi
   for f in "$@"; do
     case "$f" in */*) if [ ! -f "$f" ]; then echo "view test $name skipped: $f is absent"; skipped=$((skipped + 1)); return; fi ;; esac
   done

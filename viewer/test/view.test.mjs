@@ -34,7 +34,7 @@ const context = await chromium.launchPersistentContext(userDataDir, {
   headless: true,
   viewport: { width: 1400, height: 820 },
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-         '--disable-sync', '--no-first-run', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
+         '--disable-sync', '--disable-quic', '--no-first-run', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
 });
 const errors = [];
 const requests = [];
@@ -110,6 +110,7 @@ try {
     check(p2 && p2.tet >= 0, 'pick in the target view', p2 ? `tet ${p2.tet}` : 'nothing');
     if (picked) await page.evaluate((t) => window.volmapView.pickTet(t), picked.tet);
   }
+  await page.evaluate(() => window.volmapView.setSlice('x', 0.5, false, false));  // no slice: all tets
   const invalid = await page.evaluate(() => window.volmapView.setOnlyInvalid(true));
   const counts = await page.evaluate(() => ({ ...window.volmapView.counts }));
   const s = meta.summary;
