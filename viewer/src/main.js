@@ -5,7 +5,7 @@
 // The test hook is window.volmapView (counts, timings, pick(), setSlice(), ...).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { loadEmbeddedData, FLAG_INVERTED, FLAG_DEGENERATE } from './data.js';
+import { loadEmbeddedData, FLAG_INVERTED, FLAG_DEGENERATE, FLAG_SOURCE_BAD } from './data.js';
 import { faceAdjacency, boundaryFaceList, visibleFaces, LOCAL_FACES } from './topology.js';
 import { inferCharts } from './charts.js';
 import { viridis, chartColor, COLOR_INVERTED, COLOR_DEGENERATE, COLOR_NEUTRAL } from './colormap.js';
@@ -294,8 +294,10 @@ function main() {
     view.camera.position.set(1.45, 1.1, 3.35);  // oblique: a cube domain shows three faces
     view.camera.lookAt(0, 0, 0);
     view.scene.add(view.camera);
-    view.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
-    const light = new THREE.DirectionalLight(0xffffff, 0.9);
+    // three.js lights are physical (Lambert = albedo/π): scale by π so a face lit head-on shows
+    // about its own colour (vertex colours are sRGB bytes, output untouched).
+    view.scene.add(new THREE.AmbientLight(0xffffff, 0.55 * Math.PI));
+    const light = new THREE.DirectionalLight(0xffffff, 0.5 * Math.PI);
     light.position.set(0.4, 0.6, 1);
     view.camera.add(light);
     view.volume = view.name === 'source' || hasVolumeTarget;  // draws tet faces (else: surface only)
@@ -316,6 +318,28 @@ function main() {
     view.highlight.visible = view.highlightEdges.visible = false;
     view.highlight.frustumCulled = view.highlightEdges.frustumCulled = false;
     view.scene.add(view.highlight, view.highlightEdges);
+    // Centroid markers of the exactly flagged tets (degenerate ones are flat: invisible as faces).
+    {
+      const bad = [];
+      for (let t = 0; t < nt; t++) if (flags[t] & (FLAG_INVERTED | FLAG_DEGENERATE)) bad.push(t);
+      const mp = new Float32Array(3 * bad.length), mc = new Float32Array(3 * bad.length);
+      bad.forEach((t, k) => {
+        for (let a = 0; a < 3; a++) {
+          let c = 0;
+          for (let j = 0; j < 4; j++) c += view.xyz[3 * tets[4 * t + j] + a];
+          mp[3 * k + a] = c / 4;
+        }
+        const col = flags[t] & FLAG_INVERTED ? COLOR_INVERTED : COLOR_DEGENERATE;
+        for (let a = 0; a < 3; a++) mc[3 * k + a] = col[a] / 255;
+      });
+      const mg = new THREE.BufferGeometry();
+      mg.setAttribute('position', new THREE.BufferAttribute(mp, 3));
+      mg.setAttribute('color', new THREE.BufferAttribute(mc, 3));
+      view.badMarkers = new THREE.Points(mg, new THREE.PointsMaterial({ size: 6, sizeAttenuation: false, vertexColors: true, depthTest: false }));
+      view.badMarkers.renderOrder = 8;
+      view.badMarkers.visible = false;
+      view.scene.add(view.badMarkers);
+    }
     // Arcs and corners of the boundary map.
     if (hasCharts) {
       const ap = new Float32Array(3 * charts.arcs.length);
@@ -354,6 +378,9 @@ function main() {
     views.forEach((view, i) => {
       view.viewport = { x: Math.round(i * vw), y: 0, w: Math.round((i + 1) * vw) - Math.round(i * vw), h };
       view.camera.aspect = view.viewport.w / Math.max(1, h);
+      // Keep the unit sphere in view in both directions: widen the vertical fov of portrait views.
+      const half = (35 / 2) * Math.PI / 180;
+      view.camera.fov = view.camera.aspect >= 1 ? 35 : (2 * Math.atan(Math.tan(half) / view.camera.aspect)) * 180 / Math.PI;
       view.camera.updateProjectionMatrix();
       if (!view.labelEl) {
         view.labelEl = document.createElement('div');
@@ -426,6 +453,7 @@ function main() {
       else view.layer.setFaces(boundary, boundary.length, tets, view.xyz, faceColors);  // mapped surface
       if (view.layer.edges) view.layer.edges.visible = state.edges;
       view.ghost.mesh.visible = state.context;
+      view.badMarkers.visible = state.onlyInvalid;
       if (view.arcs) view.arcs.visible = view.corners.visible = state.marks;
     }
     let cut = 0;
@@ -537,8 +565,15 @@ function main() {
     const info = { tet: t, flags: flags[t], inverted: !!(flags[t] & FLAG_INVERTED), degenerate: !!(flags[t] & FLAG_DEGENERATE) };
     const rows = [`<tr><td>tet id</td><td>${t}</td></tr>`,
       `<tr><td>vertices</td><td>${Array.from(tets.subarray(4 * t, 4 * t + 4)).join(' ')}</td></tr>`];
-    const status = info.inverted ? 'inverted' : info.degenerate ? 'degenerate' : hasVolumeTarget ? 'positive' : '';
-    if (status) rows.push(`<tr><td>mapped tet (exact)</td><td>${status}</td></tr>`);
+    const srcBad = (flags[t] & FLAG_SOURCE_BAD) !== 0;
+    let status;
+    if (hasVolumeTarget) {
+      status = info.inverted ? 'inverted (orientation flipped)' : info.degenerate ? 'degenerate (zero volume)' :
+               srcBad ? 'valid (same orientation as its negative source)' : 'valid (positive)';
+    } else {
+      status = info.inverted ? 'negative' : info.degenerate ? 'degenerate' : 'positive';
+    }
+    rows.push(`<tr><td>${hasVolumeTarget ? 'mapped tet' : 'tet'} (exact)</td><td>${status}</td></tr>`);
     if (arrays.volume_in) { info.volumeIn = arrays.volume_in[t]; rows.push(`<tr><td>volume (source)</td><td>${fmt(info.volumeIn)}</td></tr>`); }
     if (arrays.volume_out) { info.volumeOut = arrays.volume_out[t]; rows.push(`<tr><td>volume (target)</td><td>${fmt(info.volumeOut)}</td></tr>`); }
     if (arrays.sigma) {

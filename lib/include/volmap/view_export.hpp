@@ -23,8 +23,10 @@ enum class ViewMode {
 };
 
 // Per-tet flag bits (exact, from volmap predicates).
-constexpr std::uint8_t kViewInverted = 1;           // orient3d(mapped tet) < 0 (Mesh: the tet itself)
-constexpr std::uint8_t kViewDegenerate = 2;         // orient3d(mapped tet) == 0
+// VolumeMap: relative to the source tet, as VOLMAP's volume_mapping_check (for the usual
+// VOLMAP-positive sources: orient3d(mapped tet) < 0 / == 0). Mesh and BoundaryMap: the tet itself.
+constexpr std::uint8_t kViewInverted = 1;           // orientation flipped (Mesh: orient3d < 0)
+constexpr std::uint8_t kViewDegenerate = 2;         // zero orientation (mapped or source tet)
 constexpr std::uint8_t kViewSourceNonPositive = 4;  // orient3d(source tet) <= 0
 
 // One per-tet scalar shown in the viewer (an energy, a quality measure).
