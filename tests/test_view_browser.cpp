@@ -39,14 +39,16 @@ void run_browser_cases(const std::string& cases) {
 }
 }  // namespace
 
-// The G1-sized volume map (bunny, 98,840 tets) and a map with exact inverted/degenerate tets (hand).
+// The G1-sized volume map (bunny, 98,840 tets), a map with exact inverted/degenerate tets (hand) and a
+// star boundary map (24 charts, 14 corners).
 TEST_CASE("volmap-view pages work headless in Chromium (viewer/test/run.sh)") {
-  run_browser_cases("bunny-map hand-map");
+  run_browser_cases("bunny-map hand-map duck-star-boundary");
 }
 
 TEST_SUITE("long") {
-  // Boundary-map mode (charts, arcs, corners) and the 100,695-tet G1 buste.
+  // A cube boundary map, the 100,695-tet G1 buste alone and mapped to the cube by volmap-tutte3d
+  // (295 inverted tets), the max polycube pair (45 + 198 bad tets).
   TEST_CASE("volmap-view boundary-map and single-mesh pages headless in Chromium") {
-    run_browser_cases("bunny-cube-boundary buste-mesh");
+    run_browser_cases("bunny-cube-boundary buste-mesh max-map buste-tutte-map");
   }
 }

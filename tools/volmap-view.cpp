@@ -127,6 +127,7 @@ int main(int argc, char** argv) {
     view.source_xyz = source.xyz;
     view.tets = source.tets;
     view.volume_in = volumes(source, source.xyz);
+    view.num_boundary_faces = boundary_half_faces(source).size();
     const std::vector<std::int8_t> source_signs = exact_signs(source, source.xyz, inputs[0]);
     view.flags.assign(source.num_tets(), 0);
 

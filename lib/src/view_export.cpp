@@ -228,6 +228,7 @@ std::string build_view_html(const ViewData& d, const std::string& viewer_bundle)
   meta += ",\"target_name\":" + json_string(d.target_name);
   meta += ",\"num_vertices\":" + std::to_string(d.num_vertices());
   meta += ",\"num_tets\":" + std::to_string(d.num_tets());
+  meta += ",\"num_boundary_faces\":" + std::to_string(d.num_boundary_faces);
   meta += ",\"initial_field\":" + json_string(d.initial_field);
   meta += ",\"fields\":[";
   for (std::size_t i = 0; i < d.fields.size(); ++i) {

@@ -521,13 +521,13 @@ function main() {
     if (s.num_source_nonpositive) count('source tets ≤ 0', s.num_source_nonpositive.toLocaleString());
     let html = `<table>${rows.join('')}</table>`;
     if (s.fields && Object.keys(s.fields).length) {
-      html += '<table><tr><th>field</th><th>min</th><th>max</th><th title="weighted mean">E</th></tr>';
+      html += '<table><tr><th>field</th><th>min</th><th>max</th><th title="energies: |volume|-weighted mean over valid tets; quality: plain mean">E / mean</th></tr>';
       for (const f of meta.fields) {
         const g = s.fields[f.key];
         if (!g) continue;
         html += `<tr><td title="${g.weighting || ''}">${f.label}</td><td>${fmt(g.min)}</td><td>${fmt(g.max)}</td><td>${fmt(g.weighted_mean)}</td></tr>`;
       }
-      html += '</table><div class="muted">E: mean weighted by |volume| (energies: output volume, valid tets, clamped; VOLMAP metrics rule)</div>';
+      html += '</table><div class="muted">energies: E = mean weighted by |target volume| over valid tets, clamped (VOLMAP metrics rule); quality: plain mean</div>';
     }
     $('vm-summary').innerHTML = html;
   }

@@ -5,7 +5,8 @@
 # skips with a message (exit 0) when either is absent. Builds viewer/dist/viewer.js when missing,
 # writes pages with build/bin/volmap-view from ../shared/data (each skipped when its data is absent)
 # and runs view.test.mjs on each; screenshots and pages land in <build>/view-test/.
-# $VOLMAP_VIEW_CASES (space-separated names) runs a subset: bunny-map hand-map bunny-cube-boundary buste-mesh.
+# $VOLMAP_VIEW_CASES (space-separated names) runs a subset: bunny-map hand-map duck-star-boundary
+# bunny-cube-boundary buste-mesh max-map buste-tutte-map (buste onto the cube by volmap-tutte3d).
 # Last line: "N passed, N failed".
 set -euo pipefail
 VIEWER=$(cd "$(dirname "$0")/.." && pwd)
@@ -25,15 +26,17 @@ if [ ! -f "$VIEWER/dist/viewer.js" ]; then (cd "$VIEWER" && npm run --silent bui
 mkdir -p "$OUT"
 
 passed=0; failed=0; skipped=0
-run_case() {  # name, expect-map flag, volmap-view args...
-  local name=$1 flag=$2; shift 2
+run_case() {  # name, "charts corners" expected (or ""), volmap-view args...
+  local name=$1 expect=$2; shift 2
   if [ -n "${VOLMAP_VIEW_CASES:-}" ] && [[ " $VOLMAP_VIEW_CASES " != *" $name "* ]]; then return; fi
   for f in "$@"; do
     case "$f" in */*) if [ ! -f "$f" ]; then echo "view test $name skipped: $f is absent"; skipped=$((skipped + 1)); return; fi ;; esac
   done
+  local extra=""
+  if [ -n "$expect" ]; then extra="--expect-charts ${expect% *} --expect-corners ${expect#* }"; fi
   "$BUILD/bin/volmap-view" "$@" -o "$OUT/$name.html"
   local log=$OUT/$name.log
-  if node "$VIEWER/test/view.test.mjs" "$OUT/$name.html" --label "$name" --screenshot "$OUT/$name.png" $flag >"$log" 2>&1; then :; fi
+  if node "$VIEWER/test/view.test.mjs" "$OUT/$name.html" --label "$name" --screenshot "$OUT/$name.png" $extra >"$log" 2>&1; then :; fi
   grep -v '^[0-9]* passed, [0-9]* failed' "$log" || true
   local line; line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1)
   if [ -z "$line" ]; then failed=$((failed + 1)); return; fi
@@ -44,8 +47,17 @@ run_case() {  # name, expect-map flag, volmap-view args...
 S=$DATA/volmap/viewer-samples
 run_case bunny-map "" "$S/bunny_input.mesh" "$S/bunny_output.mesh" --energy mips3d
 run_case hand-map "" "$S/hand_aigerman.mesh" "$S/hand_pc_aigerman.mesh" --energy conformal
-run_case bunny-cube-boundary --expect-map "$DATA/volmap/G1/bunny.mesh" --map "$DATA/volmap/G1_cube/bunny_cube.txt"
+run_case duck-star-boundary "24 14" "$DATA/volmap/G1/duck.mesh" --map "$DATA/volmap/G1_star/duck_star.txt"
+run_case bunny-cube-boundary "6 8" "$DATA/volmap/G1/bunny.mesh" --map "$DATA/volmap/G1_cube/bunny_cube.txt"
 run_case buste-mesh "" "$DATA/volmap/G1/buste.mesh"
+run_case max-map "" "$S/max.mesh" "$S/max_pc.mesh"
+# A 100,695-tet G1 map with inverted tets: buste onto the cube by volmap-tutte3d (when built).
+if [ -z "${VOLMAP_VIEW_CASES:-}" ] || [[ " $VOLMAP_VIEW_CASES " == *" buste-tutte-map "* ]]; then
+  if [ -x "$BUILD/bin/volmap-tutte3d" ] && [ -f "$DATA/volmap/G1/buste.mesh" ] && [ -f "$DATA/volmap/G1_cube/buste_cube.txt" ]; then
+    "$BUILD/bin/volmap-tutte3d" "$DATA/volmap/G1/buste.mesh" "$DATA/volmap/G1_cube/buste_cube.txt" "$OUT/buste_cube_tutte.mesh" >/dev/null || true
+  fi
+  run_case buste-tutte-map "" "$DATA/volmap/G1/buste.mesh" "$OUT/buste_cube_tutte.mesh"
+fi
 [ -f "$OUT/bunny-map.png" ] && cp "$OUT/bunny-map.png" "$OUT/screenshot.png"
 echo "view test: pages and screenshots in $OUT"
 echo "$passed passed, $failed failed, $skipped skipped"

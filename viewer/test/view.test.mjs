@@ -1,9 +1,9 @@
 // Headless browser test of a page written by volmap-view.
-//   node test/view.test.mjs <view.html> [--screenshot out.png] [--expect-map] [--label name]
+//   node test/view.test.mjs <view.html> [--screenshot out.png] [--expect-charts N --expect-corners N] [--label name]
 // Opens the page from file:// in Debian's Chromium (playwright-core, no browser download), with no
 // network, and checks: no console errors, the colour bar and histogram canvases have drawn pixels,
 // moving a slice changes the drawn face count, a click at the centre of the source view picks a tet
-// (and the pick shows in the panel), the boundary-map structure when --expect-map. Saves a screenshot
+// (and the pick shows in the panel), the boundary-map structure (charts = domain faces, corners) when --expect-charts/--expect-corners. Saves a screenshot
 // and prints the load timings. Last line: "N passed, N failed".
 import { chromium } from 'playwright-core';
 import { mkdtempSync, rmSync, statSync, mkdirSync, existsSync } from 'node:fs';
@@ -13,12 +13,12 @@ import { pathToFileURL } from 'node:url';
 
 const args = process.argv.slice(2);
 const opt = (name, fallback) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : fallback; };
-const valued = new Set(['--screenshot', '--label']);
+const valued = new Set(['--screenshot', '--label', '--expect-charts', '--expect-corners']);
 const html = args.find((a, i) => !a.startsWith('--') && !(i > 0 && valued.has(args[i - 1])));
-if (!html) { console.error('usage: node test/view.test.mjs <view.html> [--screenshot out.png] [--expect-map]'); process.exit(2); }
+if (!html) { console.error('usage: node test/view.test.mjs <view.html> [--screenshot out.png] [--expect-charts N --expect-corners N]'); process.exit(2); }
 const screenshot = opt('--screenshot', null);
 const label = opt('--label', html);
-const expectMap = args.includes('--expect-map');
+const expectCharts = opt('--expect-charts', null), expectCorners = opt('--expect-corners', null);
 const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 if (!existsSync(executablePath)) { console.log(`skipped: ${executablePath} is absent`); console.log('0 passed, 0 failed, 1 skipped'); process.exit(0); }
 
@@ -77,7 +77,12 @@ try {
 
   // Drawn faces: boundary only at load; a slice adds cut faces and changes the count.
   const c0 = await page.evaluate(() => ({ ...window.volmapView.counts }));
+  const meta0 = await page.evaluate(() => window.volmapView.meta);
   check(c0.drawnFaces === c0.boundaryFaces && c0.cutFaces === 0, 'only boundary faces drawn at load', JSON.stringify(c0));
+  if (meta0.num_boundary_faces) {
+    check(c0.boundaryFaces === meta0.num_boundary_faces, 'viewer face matching (hashing) finds the C++ boundary faces (sorting)',
+          `${c0.boundaryFaces} vs ${meta0.num_boundary_faces}`);
+  }
   check(c0.drawnFaces < 2 * c0.tets, 'drawn faces far fewer than all tet faces', `${c0.drawnFaces} of ${4 * c0.tets}`);
   const sliced = await page.evaluate(() => { window.volmapView.setSlice('x', 0.5); return { ...window.volmapView.counts }; });
   check(sliced.drawnFaces !== c0.drawnFaces && sliced.cutFaces > 0 && sliced.visibleTets < c0.tets,
@@ -118,8 +123,9 @@ try {
         'inverted-only filter shows exactly the tets flagged by C++',
         `${counts.visibleTets} visible, C++ says ${s.num_inverted} inverted + ${s.num_degenerate} degenerate, ${invalid} faces`);
   await page.evaluate(() => window.volmapView.setOnlyInvalid(false));
-  if (expectMap) {
-    check(counts.charts >= 4 && counts.corners >= 4 && counts.arcs > 0, 'boundary map: charts, corners and arcs inferred',
+  if (expectCharts !== null) {
+    check(counts.charts === +expectCharts && counts.corners === +expectCorners && counts.arcs > 0,
+          `boundary map: ${expectCharts} charts (domain faces) and ${expectCorners} corners inferred`,
           `${counts.charts} charts, ${counts.corners} corners, ${counts.arcs} arc edges`);
   }
   check(requests.length === 0, 'no network requests', requests.slice(0, 3).join(' '));

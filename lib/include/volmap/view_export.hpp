@@ -56,6 +56,8 @@ struct ViewData {
   std::vector<double> sigma;               // 3 * num_tets singular values of J (VolumeMap only), s1>=s2>=s3
   std::vector<ViewField> fields;
   std::string initial_field;               // key of the field coloured at load
+  std::size_t num_boundary_faces = 0;      // from volmap::boundary_half_faces (0: not given); the
+                                           // viewer's own face matching is checked against it
 
   std::size_t num_vertices() const { return source_xyz.size() / 3; }
   std::size_t num_tets() const { return tets.size() / 4; }
