@@ -50,10 +50,15 @@ try {
   await page.waitForFunction(() => window.volmapView && (window.volmapView.ready || window.volmapView.errors.length), null, { timeout: 120000 });
   const wallMs = Date.now() - t0;
   const timings = await page.evaluate(() => window.volmapView.timings);
+  const nav = await page.evaluate(() => {
+    const n = performance.getEntriesByType('navigation')[0];
+    return n ? { responseEnd: n.responseEnd, domInteractive: n.domInteractive } : {};
+  });
   const bytes = statSync(html).size;
   console.log(`${label}: ${(bytes / 1e6).toFixed(2)} MB, first render at ${timings.firstRenderMs?.toFixed(0)} ms after navigation ` +
               `(decode ${timings.decodeMs?.toFixed(0)} ms, topology ${timings.topologyMs?.toFixed(0)} ms, charts ${timings.chartsMs?.toFixed(0)} ms, ` +
-              `setup ${timings.setupMs?.toFixed(0)} ms); goto→ready ${wallMs} ms wall`);
+              `setup ${timings.setupMs?.toFixed(0)} ms; file read by ${nav.responseEnd?.toFixed(0)} ms, DOM parsed by ${nav.domInteractive?.toFixed(0)} ms); ` +
+              `goto→ready ${wallMs} ms wall`);
   const apiErrors = await page.evaluate(() => window.volmapView.errors);
   check(apiErrors.length === 0, 'viewer started without errors', apiErrors.join(' | '));
 
@@ -84,7 +89,12 @@ try {
           `${c0.boundaryFaces} vs ${meta0.num_boundary_faces}`);
   }
   check(c0.drawnFaces < 2 * c0.tets, 'drawn faces far fewer than all tet faces', `${c0.drawnFaces} of ${4 * c0.tets}`);
-  const sliced = await page.evaluate(() => { window.volmapView.setSlice('x', 0.5); return { ...window.volmapView.counts }; });
+  const sliced = await page.evaluate(() => {
+    const t = performance.now();
+    window.volmapView.setSlice('x', 0.5);
+    return { ...window.volmapView.counts, ms: performance.now() - t };
+  });
+  console.log(`${label}: slice update (visibility + cut faces + buffers) ${sliced.ms.toFixed(1)} ms`);
   check(sliced.drawnFaces !== c0.drawnFaces && sliced.cutFaces > 0 && sliced.visibleTets < c0.tets,
         'slice changes the drawn face count', `${c0.drawnFaces} → ${sliced.drawnFaces} (${sliced.cutFaces} cut, ${sliced.visibleTets} tets visible)`);
   // Through the UI as well: drag the Z slider's value via input events.
