@@ -1,5 +1,6 @@
 // tutte3d.cpp — Tutte 3D baseline: uniform Laplacian over unique edges, hard Dirichlet boundary,
-// one SimplicialLDLT factorisation of L_II with three right-hand sides (mapping.md §2).
+// one sparse Cholesky factorisation of L_II (SimplicialLLT by default, as cinolib; or SimplicialLDLT)
+// with three right-hand sides (mapping.md §2).
 // L_II is assembled directly in compressed-column form (lower triangle): free vertices are numbered
 // in increasing vertex id, so the sorted edge list (a<b) yields each column's rows already sorted.
 #include <volmap/error.hpp>
@@ -54,7 +55,8 @@ std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
 }
 
 Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vector<std::uint32_t>& edges,
-                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz) {
+                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz,
+                                       SparseFactorization factorization) {
   if (fixed.size() != num_vertices || xyz.size() != 3 * num_vertices || edges.size() % 2 != 0) {
     throw_bad_input("", 0, "solve_uniform_laplacian: size mismatch (fixed mask, positions or edge list)");
   }
@@ -125,27 +127,43 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
   }
   timings.assembly = seconds_since(start);
 
-  start = Clock::now();
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
-  solver.analyzePattern(matrix);
-  solver.factorize(matrix);
-  if (solver.info() != Eigen::Success) {
-    throw Error(ErrorKind::Failed, "", 0,
-                "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex");
-  }
-  // SPD check: LDLᵀ of an SPD matrix has a strictly positive D; a free component without any fixed
-  // vertex makes D hit (numerically) zero.
-  const auto d = solver.vectorD();
-  for (Eigen::Index i = 0; i < d.size(); ++i) {
-    if (!(d[i] > 1e-12)) {
-      throw Error(ErrorKind::Failed, "", 0,
-                  "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex");
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  const char* singular = "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex";
+  Eigen::MatrixX3d solution;
+  // SPD check: every pivot must be clearly positive (a free component without a fixed vertex makes
+  // the Laplacian singular: a pivot ~0, or a failed factorisation).
+  constexpr double kMinPivot = 1e-12;
+  if (factorization == SparseFactorization::LLT) {
+    Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
+    start = Clock::now();
+    solver.analyzePattern(matrix);
+    solver.factorize(matrix);
+    bool ok = solver.info() == Eigen::Success;
+    if (ok) {
+      const Matrix& l = solver.matrixL();
+      // Column-major L: the first stored entry of each column is its diagonal.
+      for (Eigen::Index c = 0; ok && c < l.outerSize(); ++c) {
+        const double diagonal = l.valuePtr()[l.outerIndexPtr()[c]];
+        ok = diagonal * diagonal > kMinPivot;
+      }
     }
+    if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
+  } else {
+    Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
+    start = Clock::now();
+    solver.analyzePattern(matrix);
+    solver.factorize(matrix);
+    bool ok = solver.info() == Eigen::Success;
+    const auto d = solver.vectorD();
+    for (Eigen::Index i = 0; ok && i < d.size(); ++i) ok = d[i] > kMinPivot;
+    if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
   }
-  timings.factorization = seconds_since(start);
-
-  start = Clock::now();
-  const Eigen::MatrixX3d solution = solver.solve(rhs);
   for (std::size_t v = 0; v < num_vertices; ++v) {
     const std::int32_t c = column[v];
     if (c == kFixed) continue;
@@ -158,7 +176,6 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
 }
 
 Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tutte3dOptions& options) {
-  (void)options;  // only uniform weights exist
   const std::size_t nv = mesh.num_vertices();
   if (mesh.xyz.size() != 3 * nv || mesh.tets.size() % 4 != 0) {
     throw_bad_input("", 0, "tutte3d: malformed mesh arrays");
@@ -186,7 +203,7 @@ Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tut
   result.num_fixed = map.vids.size();
   result.num_free = nv - result.num_fixed;
 
-  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, fixed, result.xyz);
+  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, fixed, result.xyz, options.factorization);
   result.timings.assembly = solve_timings.assembly;
   result.timings.factorization = solve_timings.factorization;
   result.timings.solve = solve_timings.solve;
