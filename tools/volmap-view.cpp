@@ -74,9 +74,6 @@ std::vector<std::int8_t> exact_signs(const TetMeshData& m, const std::vector<dou
   return signs;
 }
 
-// .mesh through read_medit (read_tet_mesh dispatches on the extension once all formats land).
-TetMeshData read_view_mesh(const std::string& path) { return read_medit(path); }
-
 ViewField field_from(const std::string& key, const std::string& label, double lower, double upper,
                      std::vector<double> values, bool worse_high, bool valid_only) {
   ViewField f;
@@ -101,7 +98,8 @@ int main(int argc, char** argv) {
   std::string output = "view.html", energy, map_path, bundle_path, title;
   double upper = 100;
   bool json = false;
-  app.add_option("meshes", inputs, "<in.mesh> [<out.mesh>]: source mesh and, for a volume map, the mapped mesh")
+  app.add_option("meshes", inputs, "<in.mesh> [<out.mesh>]: source mesh and, for a volume map, the mapped mesh "
+                                   "(.mesh, .vtk or .vtu)")
       ->required()->expected(1, 2);
   app.add_option("-o,--output", output, "HTML page to write")->capture_default_str();
   app.add_option("--energy", energy, "field coloured at load: conformal, dirichlet, symdir, arap, mips3d, "
@@ -121,7 +119,7 @@ int main(int argc, char** argv) {
     const std::string bundle = read_bundle(bundle_path);
     if (!(upper >= 6) || !std::isfinite(upper)) throw Error(ErrorKind::BadInput, "", 0, "--upper must be a finite number >= 6");
 
-    const TetMeshData source = read_view_mesh(inputs[0]);
+    const TetMeshData source = read_tet_mesh(inputs[0]);
     ViewData view;
     view.source_name = fs::path(inputs[0]).filename().string();
     view.source_xyz = source.xyz;
@@ -139,7 +137,7 @@ int main(int argc, char** argv) {
     }
 
     if (inputs.size() == 2) {
-      const TetMeshData target = read_view_mesh(inputs[1]);
+      const TetMeshData target = read_tet_mesh(inputs[1]);
       if (target.num_vertices() != source.num_vertices() || target.tets != source.tets) {
         throw Error(ErrorKind::BadInput, inputs[1], 0,
                     "not a map of " + inputs[0] + ": the tets differ (" + std::to_string(target.num_tets()) + " vs " +
