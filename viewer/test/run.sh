@@ -45,11 +45,12 @@ run_case() {  # name, "charts corners" expected (or ""), volmap-view args...
 }
 
 # Unit tests of the typed-array geometry (node's test runner, no browser).
-if node --test "$VIEWER/test/unit.test.mjs" >"$OUT/unit.log" 2>&1; then :; fi
-unit_pass=$(grep -E '^# pass ' "$OUT/unit.log" | awk '{print $3}'); unit_fail=$(grep -E '^# fail ' "$OUT/unit.log" | awk '{print $3}')
+if node --test "$VIEWER/test/unit.test.mjs" >"$OUT/unit-$$.log" 2>&1; then :; fi
+unit_pass=$(grep -E '^# pass ' "$OUT/unit-$$.log" | awk '{print $3}'); unit_fail=$(grep -E '^# fail ' "$OUT/unit-$$.log" | awk '{print $3}')
 echo "viewer unit tests: ${unit_pass:-0} passed, ${unit_fail:-1} failed"
-[ "${unit_fail:-1}" = 0 ] || grep -E '^not ok|Error' "$OUT/unit.log" | head -20
+[ "${unit_fail:-1}" = 0 ] || grep -E '^not ok|Error' "$OUT/unit-$$.log" | head -20
 passed=$((passed + ${unit_pass:-0})); failed=$((failed + ${unit_fail:-1}))
+[ "${unit_fail:-1}" = 0 ] && rm -f "$OUT/unit-$$.log"
 
 S=$DATA/volmap/viewer-samples
 run_case bunny-map "" "$S/bunny_input.mesh" "$S/bunny_output.mesh" --energy mips3d
