@@ -548,21 +548,36 @@ function main() {
       view.highlight.visible = view.highlightEdges.visible = on;
       if (!on) continue;
       tetVertices(t, view.xyz, p);
-      if (!p.every(Number.isFinite)) { view.highlight.visible = view.highlightEdges.visible = false; continue; }
+      // Boundary maps place only boundary vertices: draw the faces / edges whose vertices are placed.
+      const placed = [0, 1, 2, 3].map((j) => Number.isFinite(p[3 * j]) && Number.isFinite(p[3 * j + 1]) && Number.isFinite(p[3 * j + 2]));
       const tri = view.highlight.geometry.attributes.position.array;
-      for (let i = 0; i < 4; i++) for (let j = 0; j < 3; j++) {
-        const l = LOCAL_FACES[3 * i + j];
-        tri.set(p.subarray(3 * l, 3 * l + 3), 9 * i + 3 * j);
+      tri.fill(0);
+      let anyFace = false;
+      for (let i = 0; i < 4; i++) {
+        const ok = [0, 1, 2].every((j) => placed[LOCAL_FACES[3 * i + j]]);
+        if (!ok) continue;
+        anyFace = true;
+        for (let j = 0; j < 3; j++) {
+          const l = LOCAL_FACES[3 * i + j];
+          tri.set(p.subarray(3 * l, 3 * l + 3), 9 * i + 3 * j);
+        }
       }
       view.highlight.geometry.attributes.position.needsUpdate = true;
       const ed = view.highlightEdges.geometry.attributes.position.array;
+      ed.fill(0);
       const pairs = [0, 1, 0, 2, 0, 3, 1, 2, 1, 3, 2, 3];
-      for (let k = 0; k < 12; k++) ed.set(p.subarray(3 * pairs[k], 3 * pairs[k] + 3), 3 * k);
+      for (let k = 0; k < 12; k += 2) {
+        if (!placed[pairs[k]] || !placed[pairs[k + 1]]) continue;
+        ed.set(p.subarray(3 * pairs[k], 3 * pairs[k] + 3), 3 * k);
+        ed.set(p.subarray(3 * pairs[k + 1], 3 * pairs[k + 1] + 3), 3 * k + 3);
+      }
       view.highlightEdges.geometry.attributes.position.needsUpdate = true;
+      view.highlight.visible = view.highlightEdges.visible = anyFace;
     }
     requestRender();
     if (t < 0) { $('vm-pick').textContent = 'click a tet'; api.picked = null; return null; }
-    const info = { tet: t, flags: flags[t], inverted: !!(flags[t] & FLAG_INVERTED), degenerate: !!(flags[t] & FLAG_DEGENERATE) };
+    const info = { tet: t, flags: flags[t], inverted: !!(flags[t] & FLAG_INVERTED), degenerate: !!(flags[t] & FLAG_DEGENERATE),
+                   highlightedIn: views.filter((v) => v.highlight.visible).map((v) => v.name) };
     const rows = [`<tr><td>tet id</td><td>${t}</td></tr>`,
       `<tr><td>vertices</td><td>${Array.from(tets.subarray(4 * t, 4 * t + 4)).join(' ')}</td></tr>`];
     const srcBad = (flags[t] & FLAG_SOURCE_BAD) !== 0;
@@ -661,6 +676,18 @@ function main() {
       return api.counts.drawnFaces;
     },
     setField: (key) => { $('vm-field').value = key; selectField(key); },
+    setThreshold: (value, on = true) => {
+      state.thr = value; state.thrOn = on;
+      $('vm-thr').value = value; $('vm-thr-on').checked = on; $('vm-thr-val').textContent = fmt(value);
+      updateGeometry();
+      return api.counts.visibleTets;
+    },
+    // Tets visible now (for tests): ids of the first `max` visible tets and their display values.
+    visibleSample: (max = 1000) => {
+      const out = [];
+      for (let t = 0; t < nt && out.length < max; t++) if (visible[t]) out.push([t, displayValues[t], flags[t]]);
+      return out;
+    },
     setOnlyInvalid: (on) => { state.onlyInvalid = $('vm-invalid').checked = on; updateGeometry(); return api.counts.drawnFaces; },
     setWeighted: (on) => { state.weighted = $('vm-weighted').checked = on; updatePlots(); return api.histogram; },
     renderNow: () => render(),

@@ -116,6 +116,9 @@ try {
   check(picked && panel.includes(String(picked.tet)), 'picked tet shown in the panel');
   const meta = await page.evaluate(() => window.volmapView.meta);
   if (meta.mode === 'volume-map') {
+    check(picked && picked.highlightedIn.length === 2, 'picked tet highlighted in both views', picked ? picked.highlightedIn.join(',') : '');
+  }
+  if (meta.mode === 'volume-map') {
     check(picked && Array.isArray(picked.sigma) && picked.sigma.length === 3 && picked.volumeOut !== undefined,
           'pick reports J singular values and volumes');
   }
@@ -123,6 +126,7 @@ try {
     const [tx, ty] = await page.evaluate(() => window.volmapView.viewCenter(1));
     const p2 = await page.evaluate(([x, y]) => window.volmapView.pick(x, y), [tx, ty]);
     check(p2 && p2.tet >= 0, 'pick in the target view', p2 ? `tet ${p2.tet}` : 'nothing');
+    check(p2 && p2.highlightedIn.length === 2, 'target-view pick highlighted in both views', p2 ? p2.highlightedIn.join(',') : '');
     if (picked) await page.evaluate((t) => window.volmapView.pickTet(t), picked.tet);
   }
   await page.evaluate(() => window.volmapView.setSlice('x', 0.5, false, false));  // no slice: all tets
@@ -133,6 +137,20 @@ try {
         'inverted-only filter shows exactly the tets flagged by C++',
         `${counts.visibleTets} visible, C++ says ${s.num_inverted} inverted + ${s.num_degenerate} degenerate, ${invalid} faces`);
   await page.evaluate(() => window.volmapView.setOnlyInvalid(false));
+  // Energy threshold filter: only tets at or beyond the threshold stay (flagged tets always stay).
+  const thr = await page.evaluate(() => {
+    const api = window.volmapView, f = api.meta.fields.find((x) => x.key === api.histogram.field);
+    const lo = +document.getElementById('vm-lo').value, hi = +document.getElementById('vm-hi').value;
+    const value = (lo + hi) / 2;
+    const n = api.setThreshold(value, true);
+    const sample = api.visibleSample(5000);
+    const worseLow = f && f.worse === 'low';
+    const wrong = sample.filter(([, v, fl]) => !(fl & 3) && (worseLow ? v > value : v < value)).length;
+    api.setThreshold(value, false);
+    return { n, wrong, value, all: api.counts.visibleTets };
+  });
+  check(thr.n < thr.all && thr.wrong === 0, 'threshold filter keeps only tets beyond the threshold',
+        `${thr.n} of ${thr.all} tets at threshold ${thr.value.toPrecision(4)}, ${thr.wrong} wrong`);
   if (expectCharts !== null) {
     check(counts.charts === +expectCharts && counts.corners === +expectCorners && counts.arcs > 0,
           `boundary map: ${expectCharts} charts (domain faces) and ${expectCorners} corners inferred`,
