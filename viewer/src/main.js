@@ -465,6 +465,13 @@ function main() {
       `${numVisible.toLocaleString()} / ${nt.toLocaleString()} tets visible`;
     requestRender();
   }
+  // Slider drags fire many input events: recompute at most once per frame.
+  let geometryPending = false;
+  function scheduleGeometry() {
+    if (geometryPending) return;
+    geometryPending = true;
+    requestAnimationFrame(() => { geometryPending = false; updateGeometry(); });
+  }
   function recolorAll() {
     computeColors();
     for (const view of views) {
@@ -629,7 +636,7 @@ function main() {
   ['x', 'y', 'z'].forEach((a, i) => {
     const on = $(`vm-slice-${a}-on`), val = $(`vm-slice-${a}`), flip = $(`vm-slice-${a}-flip`);
     on.addEventListener('change', () => { state.slices[i].on = on.checked; updateGeometry(); });
-    val.addEventListener('input', () => { state.slices[i].value = +val.value; state.slices[i].on = on.checked = true; updateGeometry(); });
+    val.addEventListener('input', () => { state.slices[i].value = +val.value; state.slices[i].on = on.checked = true; scheduleGeometry(); });
     flip.addEventListener('change', () => { state.slices[i].flip = flip.checked; updateGeometry(); });
   });
   document.querySelectorAll('input[name=vm-space]').forEach((r) => r.addEventListener('change', () => { state.space = r.value; updateGeometry(); }));
@@ -646,7 +653,7 @@ function main() {
   $('vm-thr-on').addEventListener('change', () => { state.thrOn = $('vm-thr-on').checked; updateGeometry(); });
   $('vm-thr').addEventListener('input', () => {
     state.thr = +$('vm-thr').value; $('vm-thr-val').textContent = fmt(state.thr);
-    state.thrOn = $('vm-thr-on').checked = true; updateGeometry();
+    state.thrOn = $('vm-thr-on').checked = true; scheduleGeometry();
   });
   $('vm-invalid').addEventListener('change', () => { state.onlyInvalid = $('vm-invalid').checked; updateGeometry(); });
   $('vm-edges').addEventListener('change', () => { state.edges = $('vm-edges').checked; updateGeometry(); });

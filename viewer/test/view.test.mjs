@@ -98,8 +98,9 @@ try {
   check(sliced.drawnFaces !== c0.drawnFaces && sliced.cutFaces > 0 && sliced.visibleTets < c0.tets,
         'slice changes the drawn face count', `${c0.drawnFaces} → ${sliced.drawnFaces} (${sliced.cutFaces} cut, ${sliced.visibleTets} tets visible)`);
   // Through the UI as well: drag the Z slider's value via input events.
-  const zCount = await page.evaluate(() => {
+  const zCount = await page.evaluate(async () => {
     const s = document.getElementById('vm-slice-z'); s.value = '0.3'; s.dispatchEvent(new Event('input'));
+    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));  // updates are per frame
     return window.volmapView.counts.drawnFaces;
   });
   check(zCount !== sliced.drawnFaces, 'Z slider (UI event) changes the drawn face count', `${sliced.drawnFaces} → ${zCount}`);
