@@ -31,7 +31,8 @@ function boundingBox(xyz) {
   }
   if (!(min[0] <= max[0])) { min.fill(0); max.fill(1); }
   const center = [0, 1, 2].map((a) => (min[a] + max[a]) / 2);
-  const radius = Math.max(1e-30, Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / 2);
+  const dx = max[0] - min[0], dy = max[1] - min[1], dz = max[2] - min[2];
+  const radius = Math.max(1e-30, Math.sqrt(dx * dx + dy * dy + dz * dz) / 2);
   return { min, max, center, radius };
 }
 
