@@ -11,7 +11,9 @@
 #include "test_support.hpp"
 #include "view_test_support.hpp"
 
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -170,6 +172,33 @@ TEST_CASE("volmap-view on the viewer samples: VOLMAP figures and exact inverted 
   CHECK(j["fields"]["conformal"]["min"].get<double>() == doctest::Approx(1.00379).epsilon(5e-6));
   CHECK(j["fields"]["mips3d"]["weighted_mean"].get<double>() == doctest::Approx(6.88193).epsilon(5e-6));
   CHECK(j["fields"]["mips3d"]["min"].get<double>() == doctest::Approx(1.00859).epsilon(5e-6));
+
+  // The page's singular values of J (view adapter, eigenvalues of JᵀJ) reproduce the metrics module's
+  // per-tet MIPS3D and Conformal (computed from the invariants of JᵀJ) on every tet.
+  {
+    const std::string html = view_test::read_all((dir / "bunny.html").string());
+    const auto meta = nlohmann::json::parse(view_test::between(html, "id=\"volmap-meta\">", "</script>"));
+    const std::string blob = view_test::base64_decode(view_test::between(html, "id=\"volmap-data\">", "</script>"));
+    auto floats = [&](const std::string& name) {
+      const auto& a = meta["arrays"][name];
+      std::vector<float> v(a["count"].get<std::size_t>());
+      std::memcpy(v.data(), blob.data() + a["offset"].get<std::size_t>(), 4 * v.size());
+      return v;
+    };
+    const auto sigma = floats("sigma"), mips = floats("field_mips3d"), conf = floats("field_conformal");
+    REQUIRE(sigma.size() == 3 * mips.size());
+    std::size_t disagree = 0, saturated = 0;
+    for (std::size_t t = 0; t < mips.size(); ++t) {
+      const double s1 = sigma[3 * t], s2 = sigma[3 * t + 1], s3 = sigma[3 * t + 2];
+      const double m = std::min(100.0, (s1 / s2 + s2 / s1) * (s3 / s1 + s1 / s3) * (s2 / s3 + s3 / s2) / 8);
+      const double c = std::min(100.0, (s1 * s1 + s2 * s2 + s3 * s3) / (3 * std::cbrt(s1 * s1 * s2 * s2 * s3 * s3)));
+      disagree += std::fabs(m - mips[t]) > 1e-3 * m || std::fabs(c - conf[t]) > 1e-3 * c ? 1 : 0;
+      saturated += mips[t] >= 100 ? 1 : 0;
+      disagree += s1 >= s2 && s2 >= s3 && s3 > 0 ? 0 : 1;  // sorted, positive (no flat tet here)
+    }
+    CHECK(disagree == 0);
+    MESSAGE("bunny pair: " << saturated << " of " << mips.size() << " tets have MIPS3D clamped at 100");
+  }
 
   // The hand and max polycube pairs are all-negative; relative to the source (volmap-map-check's oracle):
   // hand 95 inverted + 3 degenerate, max 45 + 198.
