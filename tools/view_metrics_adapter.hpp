@@ -5,8 +5,9 @@
 //    invariant under a relabelling applied to both meshes, so each negative source tet is given to
 //    compute_metrics with v0<->v1 swapped in both; source tets of zero volume have no J and are
 //    left out (their energies NaN, quality 0);
-//  * the singular values of J per tet (metrics.hpp has no per-tet accessor): eigenvalues of JᵀJ in
-//    closed form (Smith), J = F_out·F_in⁻¹ with F = [a1−a0 | a2−a0 | a3−a0] (volmap-reference.md §7).
+//  * the singular values of J per tet (metrics.hpp has no per-tet accessor): the largest eigenvalue of
+//    JᵀJ in closed form (Smith), the two others from det J and ‖cof J‖² (no cancellation for flat
+//    tets); J = F_out·F_in⁻¹ with F = [a1−a0 | a2−a0 | a3−a0] (volmap-reference.md §7).
 // Display values only: validity flags never come from here (volmap-view uses exact predicates).
 #pragma once
 
@@ -84,7 +85,26 @@ inline void jacobian_singular_values(const double* xyz_in, const double* xyz_out
     for (int j = 0; j < 3; ++j) C[i][j] = J[0][i] * J[0][j] + J[1][i] * J[1][j] + J[2][i] * J[2][j];
   double ev[3];
   sym_eigenvalues(C, ev);
-  for (int i = 0; i < 3; ++i) s[i] = std::sqrt(std::max(0.0, ev[i]));
+  // λ1 (largest) from the closed form is accurate; λ2, λ3 are not when λ3 << λ1 (cancellation; flat
+  // output tets). Recover them from invariants without cancellation: λ2λ3 = det(J)²/λ1 and
+  // λ2+λ3 = (‖cof J‖² − λ2λ3)/λ1, then the stable quadratic roots.
+  const double l1 = std::max(0.0, ev[0]);
+  const double detJ = det3(F1) / d0;
+  double cof2 = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int r0 = (i + 1) % 3, r1 = (i + 2) % 3, c0 = (j + 1) % 3, c1 = (j + 2) % 3;
+      const double m = J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0];
+      cof2 += m * m;
+    }
+  if (!(l1 > 0)) return;
+  const double p = detJ * detJ / l1;
+  const double q = std::max(0.0, (cof2 - p) / l1);
+  const double l2 = (q + std::sqrt(std::max(0.0, q * q - 4 * p))) / 2;
+  const double l3 = l2 > 0 ? p / l2 : 0.0;
+  s[0] = std::sqrt(l1);
+  s[1] = std::sqrt(std::min(l1, l2));
+  s[2] = std::sqrt(std::min(l2, std::max(0.0, l3)));
 }
 
 }  // namespace detail
