@@ -13,7 +13,7 @@ JOBS=${VOLMAP_JOBS:-$(nproc)}
 
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libboost-dev libgmp-dev libopenmesh-dev
           libtet1.5-dev doctest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev liblbfgspp-dev
-          libtbb-dev libcgal-dev python3-meshio)
+          libtbb-dev libcgal-dev python3-meshio chromium fonts-liberation)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -23,6 +23,17 @@ if ((${#missing[@]})); then
   SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# volmap-view's browser bundle (viewer/dist/viewer.js: three.js + viewer, pinned by package-lock.json),
+# with the machine's Node.js/npm; npm ci only when the lock file changed since the last install.
+if command -v npm >/dev/null; then
+  if [ ! -f viewer/node_modules/.package-lock.json ] || [ viewer/package-lock.json -nt viewer/node_modules/.package-lock.json ]; then
+    (cd viewer && npm ci --no-audit --no-fund --loglevel=error) || echo "setup: npm ci failed in viewer/ (volmap-view tests will skip)"
+  fi
+  if [ -d viewer/node_modules/three ]; then (cd viewer && npm run --silent build); fi
+else
+  echo "setup: npm not found: volmap-view's bundle (viewer/dist/viewer.js) is not built"
 fi
 
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null

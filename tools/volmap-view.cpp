@@ -1,0 +1,236 @@
+// volmap-view — writes ONE self-contained HTML page to inspect a tet mesh, a volume map or a
+// boundary map in the browser (offline, from file://):
+//   volmap-view <in.mesh> <out.mesh> [-o view.html] [--energy mips3d]   volume map (two linked views)
+//   volmap-view <in.mesh> --map boundary.txt [-o view.html]              boundary map (mapped surface)
+//   volmap-view <in.mesh> [-o view.html]                                 one mesh
+// Per-tet values (VOLMAP energies and quality from volmap/metrics.hpp, Jacobian singular values and
+// volumes; see view_metrics_adapter.hpp) are computed in C++; inverted/degenerate flags are exact (volmap predicates, batch orient3d_tets). The viewer
+// bundle (viewer/dist/viewer.js: three.js + viewer code, built by `npm ci && npm run build` in
+// viewer/) is read at run time from --bundle, else $VOLMAP_VIEWER_BUNDLE, else the path of this
+// source tree baked in at compile time (<repo>/viewer/dist/viewer.js, from __FILE__).
+// Exit: 0 ok, 2 usage / bad input / bundle missing.
+#include "tool_common.hpp"
+#include "view_metrics_adapter.hpp"
+
+#include <volmap/boundary_faces.hpp>
+#include <volmap/io.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/view_export.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace volmap;
+
+namespace {
+
+std::string default_bundle_path() {
+  // __FILE__ is the absolute path of this source file under CMake: <repo>/tools/volmap-view.cpp.
+  const fs::path source(__FILE__);
+  return (source.parent_path().parent_path() / "viewer" / "dist" / "viewer.js").string();
+}
+
+std::string read_bundle(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw Error(ErrorKind::Io, path, 0,
+                "viewer bundle not found: build it with `npm ci && npm run build` in viewer/ "
+                "(or pass --bundle / set VOLMAP_VIEWER_BUNDLE)");
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// VOLMAP-signed volume: orient3d(a,b,c,d) = det[a-d; b-d; c-d] = 6 V (display only, not a sign
+// decision: flags come from the exact predicate).
+double signed_volume(const double* a, const double* b, const double* c, const double* d) {
+  const double ax = a[0] - d[0], ay = a[1] - d[1], az = a[2] - d[2];
+  const double bx = b[0] - d[0], by = b[1] - d[1], bz = b[2] - d[2];
+  const double cx = c[0] - d[0], cy = c[1] - d[1], cz = c[2] - d[2];
+  return (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)) / 6.0;
+}
+
+std::vector<double> volumes(const TetMeshData& m, const std::vector<double>& xyz) {
+  std::vector<double> v(m.num_tets());
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    const std::uint32_t* tv = &m.tets[4 * t];
+    v[t] = signed_volume(&xyz[3 * tv[0]], &xyz[3 * tv[1]], &xyz[3 * tv[2]], &xyz[3 * tv[3]]);
+  }
+  return v;
+}
+
+// Exact signs of every tet of (tets, xyz) via the batch predicate.
+std::vector<std::int8_t> exact_signs(const TetMeshData& m, const std::vector<double>& xyz, const std::string& what) {
+  std::vector<std::int8_t> signs(m.num_tets());
+  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, m.tets.data(), m.num_tets(), signs.data());
+  if (!c.ok) throw Error(ErrorKind::BadInput, what, 0, std::string("cannot orient tets: ") + c.error);
+  return signs;
+}
+
+ViewField field_from(const std::string& key, const std::string& label, double lower, double upper,
+                     std::vector<double> values, bool worse_high, bool valid_only) {
+  ViewField f;
+  f.key = key;
+  f.label = label;
+  f.lower = lower;
+  f.upper = upper;
+  f.values = std::move(values);
+  f.worse_high = worse_high;
+  f.valid_only = valid_only;
+  f.volume_weighted = worse_high;  // energies: |volume|-weighted (VOLMAP E); quality: plain mean (VOLMAP avg)
+  return f;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"volmap-view: write one self-contained HTML page (offline, file://) to inspect a tet mesh, "
+               "a volume map (in + out) or a boundary map (in + --map) in the browser",
+               "volmap-view"};
+  std::vector<std::string> inputs;
+  std::string output = "view.html", energy, map_path, bundle_path, title;
+  double upper = 100;
+  bool json = false;
+  app.add_option("meshes", inputs, "<in.mesh> [<out.mesh>]: source mesh and, for a volume map, the mapped mesh "
+                                   "(.mesh, .vtk or .vtu)")
+      ->required()->expected(1, 2);
+  app.add_option("-o,--output", output, "HTML page to write")->capture_default_str();
+  app.add_option("--energy", energy, "field coloured at load: conformal, dirichlet, symdir, arap, mips3d, "
+                                     "quality_out, quality_in (default: mips3d for a volume map, quality_in otherwise)");
+  app.add_option("--map", map_path, "boundary map (vid x y z) of <in.mesh>: boundary-map mode without <out.mesh>");
+  app.add_option("--upper", upper, "upper clamp of the energies (VOLMAP metrics default 100)")->capture_default_str();
+  app.add_option("--bundle", bundle_path, "viewer bundle (default: $VOLMAP_VIEWER_BUNDLE or " + default_bundle_path() + ")");
+  app.add_option("--title", title, "page title (default: the input file names)");
+  app.add_flag("--json", json, "print one JSON object (output, bytes, counts, timings)");
+
+  return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (bundle_path.empty()) {
+      const char* env = std::getenv("VOLMAP_VIEWER_BUNDLE");
+      bundle_path = env && *env ? env : default_bundle_path();
+    }
+    const std::string bundle = read_bundle(bundle_path);
+    if (!(upper >= 6) || !std::isfinite(upper)) throw Error(ErrorKind::BadInput, "", 0, "--upper must be a finite number >= 6");
+
+    const TetMeshData source = read_tet_mesh(inputs[0]);
+    ViewData view;
+    view.source_name = fs::path(inputs[0]).filename().string();
+    view.source_xyz = source.xyz;
+    view.tets = source.tets;
+    view.volume_in = volumes(source, source.xyz);
+    view.num_boundary_faces = boundary_half_faces(source).size();
+    const std::vector<std::int8_t> source_signs = exact_signs(source, source.xyz, inputs[0]);
+    view.flags.assign(source.num_tets(), 0);
+
+    std::size_t map_mismatches = 0;
+    BoundaryMap map;
+    if (!map_path.empty()) {
+      map = read_boundary_map(map_path);
+      validate_boundary_map(map, source, map_path);
+    }
+
+    if (inputs.size() == 2) {
+      const TetMeshData target = read_tet_mesh(inputs[1]);
+      if (target.num_vertices() != source.num_vertices() || target.tets != source.tets) {
+        throw Error(ErrorKind::BadInput, inputs[1], 0,
+                    "not a map of " + inputs[0] + ": the tets differ (" + std::to_string(target.num_tets()) + " vs " +
+                        std::to_string(source.num_tets()) + " tets, " + std::to_string(target.num_vertices()) + " vs " +
+                        std::to_string(source.num_vertices()) + " vertices, same order required)");
+      }
+      view.mode = ViewMode::VolumeMap;
+      view.target_name = fs::path(inputs[1]).filename().string();
+      view.target_xyz = target.xyz;
+      view.volume_out = volumes(source, target.xyz);
+      const std::vector<std::int8_t> target_signs = exact_signs(source, target.xyz, inputs[1]);
+      // Relative to the source tet, as VOLMAP's volume_mapping_check: a mapped tet is inverted when its
+      // exact orientation differs from its source tet's, degenerate when either is zero. For the
+      // usual VOLMAP-positive sources this is "orient3d(output tet) < 0 / == 0" (metrics rule 1).
+      for (std::size_t t = 0; t < source.num_tets(); ++t) {
+        const int si = source_signs[t], so = target_signs[t];
+        view.flags[t] = static_cast<std::uint8_t>((so != 0 && si != 0 && so != si ? kViewInverted : 0) |
+                                                  (so == 0 || si == 0 ? kViewDegenerate : 0) |
+                                                  (si <= 0 ? kViewSourceNonPositive : 0));
+      }
+      // Per-tet Jacobian singular values, energies and quality from the metrics module.
+      const volmap_view::ViewMetrics m = volmap_view::compute_view_metrics(source, target.xyz, source_signs, upper);
+      view.sigma = m.sigma;
+      using volmap::Energy;
+      auto energy = [&](Energy e) { return m.energy[static_cast<int>(e)]; };
+      view.fields.push_back(field_from("conformal", "Conformal", 1, upper, energy(Energy::Conformal), true, true));
+      view.fields.push_back(field_from("dirichlet", "Dirichlet", 3, upper, energy(Energy::Dirichlet), true, true));
+      view.fields.push_back(field_from("symdir", "Symmetric Dirichlet", 6, upper, energy(Energy::SymmetricDirichlet), true, true));
+      view.fields.push_back(field_from("arap", "ARAP", 0, upper, energy(Energy::Arap), true, true));
+      view.fields.push_back(field_from("mips3d", "MIPS3D", 1, upper, energy(Energy::Mips3d), true, true));
+      view.fields.push_back(field_from("quality_out", "quality 3r/R (target)", 0, 1, m.quality_out, false, false));
+      view.fields.push_back(field_from("quality_in", "quality 3r/R (source)", 0, 1, m.quality_in, false, false));
+      if (!map_path.empty()) {
+        for (std::size_t i = 0; i < map.size(); ++i) {
+          const std::uint32_t v = map.vids[i];
+          for (int a = 0; a < 3; ++a) map_mismatches += target.xyz[3 * v + a] != map.xyz[3 * i + a] ? 1 : 0;
+        }
+      }
+    } else {
+      view.mode = map_path.empty() ? ViewMode::Mesh : ViewMode::BoundaryMap;
+      for (std::size_t t = 0; t < source.num_tets(); ++t) {
+        view.flags[t] = (source_signs[t] < 0 ? kViewInverted : 0) | (source_signs[t] == 0 ? kViewDegenerate : 0) |
+                        (source_signs[t] <= 0 ? kViewSourceNonPositive : 0);
+      }
+      if (!map_path.empty()) {
+        view.target_name = fs::path(map_path).filename().string();
+        view.target_xyz.assign(source.xyz.size(), std::numeric_limits<double>::quiet_NaN());
+        for (std::size_t i = 0; i < map.size(); ++i)
+          for (int a = 0; a < 3; ++a) view.target_xyz[3 * map.vids[i] + a] = map.xyz[3 * i + a];
+      }
+      view.fields.push_back(field_from("quality_in", "quality 3r/R", 0, 1, volmap_view::tet_quality(source, source.xyz), false, false));
+    }
+    if (energy.empty()) energy = view.mode == ViewMode::VolumeMap ? "mips3d" : "quality_in";
+    view.initial_field = energy;
+    bool known = false;
+    for (const auto& f : view.fields) known = known || f.key == energy;
+    if (!known) {
+      std::string keys;
+      for (const auto& f : view.fields) keys += (keys.empty() ? "" : ", ") + f.key;
+      throw Error(ErrorKind::BadInput, "", 0, "--energy " + energy + " is not available here (choose one of: " + keys + ")");
+    }
+    view.title = title.empty() ? view.source_name + (view.target_name.empty() ? "" : " → " + view.target_name) : title;
+
+    write_view_html(output, view, bundle);
+    const ViewSummary summary = summarize_view(view);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto bytes = fs::file_size(output);
+    if (json) {
+      nlohmann::json j{{"ok", true},
+                       {"output", output},
+                       {"bytes", bytes},
+                       {"mode", view.mode == ViewMode::VolumeMap ? "volume-map" : view.mode == ViewMode::BoundaryMap ? "boundary-map" : "mesh"},
+                       {"num_vertices", view.num_vertices()},
+                       {"num_tets", view.num_tets()},
+                       {"num_inverted", summary.num_inverted},
+                       {"num_degenerate", summary.num_degenerate},
+                       {"bundle", bundle_path},
+                       {"seconds", seconds}};
+      if (!map_path.empty() && inputs.size() == 2) j["map_coordinate_mismatches"] = map_mismatches;
+      for (const auto& fs_ : summary.fields) {
+        j["fields"][fs_.key] = {{"count", fs_.count},
+                                {"min", std::isfinite(fs_.min) ? nlohmann::json(fs_.min) : nlohmann::json()},
+                                {"max", std::isfinite(fs_.max) ? nlohmann::json(fs_.max) : nlohmann::json()},
+                                {"weighted_mean", std::isfinite(fs_.weighted_mean) ? nlohmann::json(fs_.weighted_mean) : nlohmann::json()}};
+      }
+      std::cout << j.dump() << "\n";
+    } else {
+      std::cout << "volmap-view: wrote " << output << " (" << bytes << " bytes, " << view.num_tets() << " tets, "
+                << summary.num_inverted << " inverted, " << summary.num_degenerate << " degenerate) in " << seconds
+                << " s\n";
+      if (!map_path.empty() && inputs.size() == 2 && map_mismatches)
+        std::cout << "volmap-view: note: " << map_mismatches << " target coordinates differ from the boundary map\n";
+    }
+    return volmap_tools::kExitOk;
+  }, &json);
+}
