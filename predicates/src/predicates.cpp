@@ -561,11 +561,27 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
       const double* b = xyz + 3 * std::size_t(v[1]);
       const double* c = xyz + 3 * std::size_t(v[2]);
       const double* d = xyz + 3 * std::size_t(v[3]);
+#if defined(__SSE2__)
+      // Same expression tree as below with the x,y columns paired (see orient3d()).
+      const __m128d dxy = _mm_loadu_pd(d);
+      const __m128d A = _mm_sub_pd(_mm_loadu_pd(a), dxy);
+      const __m128d B = _mm_sub_pd(_mm_loadu_pd(b), dxy);
+      const __m128d C = _mm_sub_pd(_mm_loadu_pd(c), dxy);
+      const __m128d Z = _mm_sub_pd(_mm_set_pd(b[2], a[2]), _mm_set1_pd(d[2]));
+      const double cdz = c[2] - d[2];
+      const __m128d P1 = _mm_mul_pd(B, _mm_shuffle_pd(C, C, 1));
+      const __m128d P2 = _mm_mul_pd(C, _mm_shuffle_pd(A, A, 1));
+      const __m128d P3 = _mm_mul_pd(A, _mm_shuffle_pd(B, B, 1));
+      const __m128d T = _mm_mul_pd(Z, _mm_sub_pd(_mm_unpacklo_pd(P1, P2), _mm_unpackhi_pd(P1, P2)));
+      const double det = (_mm_cvtsd_f64(T) + _mm_cvtsd_f64(_mm_unpackhi_pd(T, T))) +
+                         cdz * (_mm_cvtsd_f64(P3) - _mm_cvtsd_f64(_mm_unpackhi_pd(P3, P3)));
+#else
       const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
       const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
       const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
       const double det =
           adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+#endif
       const int s = (det > static_bound) - (det < -static_bound);
       out[t] = static_cast<std::int8_t>(s);
     }
