@@ -12,6 +12,7 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 
 using namespace volmap;
