@@ -4,14 +4,15 @@
 // c−d], VOLMAP-positive tets have orient3d > 0. Design and constants: ../shared/docs/predicates.md.
 //   L1 (batch only) static filter  |det| > 5.1107127829973299e-15·Δx·Δy·Δz (CGAL/FPG constant, TetGen
 //      and HXT use it with the bounding-box extents), valid when every input lies in the safe range.
-//   L2 Shewchuk stage A: |det| > errA·permanent (+ an absolute underflow margin T, see guarded_threshold)
+//   L2 Shewchuk stage A: |det| > errA·permanent, plus under/overflow guards (see "Guards" below),
 //      evaluated with the exact expression trees of Shewchuk's predicates.c, so his bounds apply.
 //   L3 when every nonzero |coordinate| is in [2^-142, 2^201] (Shewchuk's proven range, where no
 //      product of the algorithms below under- or overflows): if all Two-Diff tails are zero the
 //      rounded differences are exact and one expansion evaluation gives the sign; otherwise orient2d /
 //      orient3d try stage B (exact minors of the rounded differences, accept if |estimate| ≥ errB·
-//      permanent) and then the exact expansion of the raw-coordinate determinant det[p_i 1]; incircle
-//      and insphere with nonzero tails go to L4.
+//      permanent), stage C (first-order tail terms, accept if |estimate| ≥ errC·permanent +
+//      resulterrbound·|B|) and then (stage D) the exact expansion of the raw-coordinate determinant
+//      det[p_i 1]; incircle and insphere with nonzero tails go to L4.
 //   L4 exact integers (exact.cpp) for inputs outside the safe range.
 // Reference: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
 // Predicates", DCG 18 (1997). This TU must be compiled without FP contraction (-ffp-contract=off).
@@ -22,6 +23,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace volmap {
 namespace {
@@ -29,12 +35,15 @@ namespace {
 using namespace detail;
 
 constexpr double kEps = 0x1p-53;
-// Shewchuk's stage-A bounds with 8ε² of extra slack for the one extra addition of the underflow
-// margin T in the threshold (a larger bound is always sound).
+// Shewchuk's stage-A bounds with 8ε² of extra slack for the underflow guards below (a larger bound
+// is always sound).
 constexpr double kO2ErrA = (3.0 + 24.0 * kEps) * kEps;
 constexpr double kO2ErrB = (2.0 + 12.0 * kEps) * kEps;
 constexpr double kO3ErrA = (7.0 + 64.0 * kEps) * kEps;
 constexpr double kO3ErrB = (3.0 + 28.0 * kEps) * kEps;
+constexpr double kO3ErrC = (26.0 + 288.0 * kEps) * kEps * kEps;
+constexpr double kO2ErrC = (9.0 + 64.0 * kEps) * kEps * kEps;
+constexpr double kResultErr = (3.0 + 8.0 * kEps) * kEps;
 constexpr double kIcErrA = (10.0 + 104.0 * kEps) * kEps;
 constexpr double kIsErrA = (16.0 + 232.0 * kEps) * kEps;
 // L1 static filter constant (CGAL Static_filters/Orientation_3, geogram PCK, TetGen/HXT).
@@ -42,6 +51,16 @@ constexpr double kO3Static = 5.1107127829973299e-15;
 // Stage A assumes no overflow: every accepted threshold requires a permanent below this bound (then
 // no partial sum of the determinant can overflow either).
 constexpr double kPermanentMax = 0x1p1000;
+// Guards of stage A (our derivation). Shewchuk's relative bounds assume no underflow. With gradual
+// underflow, additions and subtractions stay exact and each product adds an absolute error ≤ η =
+// 2^-1075, which the later factors scale: the extra error is ≤ 14η(Σ|z| + 1) for orient3d, ≤ 2η for
+// orient2d, ≤ 64η(Σlift + 1) for incircle and ≤ 512η(Σlift + 1)² for insphere. Rather than add that
+// margin T (a subnormal computation, slow on x86), the filter accepts only when |det| is large
+// enough and the scale factor small enough that T ≤ 2^-64·|det|, which the 8ε² of extra slack in the
+// constants absorbs: orient3d |det| ≥ 2^-590 and Σ|z| ≤ 2^400; orient2d |det| ≥ 2^-900; incircle
+// |det| ≥ 2^-590 and Σlift ≤ 2^400; insphere |det| ≥ 2^-580 and Σlift ≤ 2^200. Overflow: every
+// accepted case also needs permanent < 2^1000 (false for inf/NaN), so no partial sum overflowed.
+// Everything else falls through to the exact layers, which are always correct.
 
 // Shewchuk's proven range: nonzero |x| in [2^-142, 2^201] keeps every expansion product exact.
 inline bool in_safe_range(double x) {
@@ -59,8 +78,6 @@ inline int sign_of(double x) { return (x > 0.0) - (x < 0.0); }
 
 // ---------------------------------------------------------------------------------------------
 // orient2d
-// Underflow margin: the two products may underflow (absolute error ≤ η = 2^-1075 each, additions of
-// subnormals are exact), so T = 2^-1070 covers them with a wide margin.
 int orient2d_exact_tail(const double* a, const double* b, const double* c, double permanent) {
   double acx, acxt, acy, acyt, bcx, bcxt, bcy, bcyt;
   two_diff(a[0], c[0], acx, acxt);
@@ -70,8 +87,12 @@ int orient2d_exact_tail(const double* a, const double* b, const double* c, doubl
   double e[4];
   const int n = cross_diff(acx, bcy, acy, bcx, e);
   if (acxt == 0.0 && acyt == 0.0 && bcxt == 0.0 && bcyt == 0.0) return expansion_sign(e, n);
-  const double est = expansion_estimate(e, n);
+  double est = expansion_estimate(e, n);
   if (std::fabs(est) >= kO2ErrB * permanent) return sign_of(est);
+  // Stage C: first-order tail terms.
+  const double errbound = kO2ErrC * permanent + kResultErr * std::fabs(est);
+  est += (acx * bcyt + bcy * acxt) - (acy * bcxt + bcx * acyt);
+  if (std::fabs(est) >= errbound) return sign_of(est);
   // Exact: det[p_i 1] = ab − ac + bc with xy-minors of the raw coordinates.
   double ab[4], ac[4], bc[4], t8[8], r[12];
   const int lab = cross_diff(a[0], b[1], a[1], b[0], ab);
@@ -82,7 +103,7 @@ int orient2d_exact_tail(const double* a, const double* b, const double* c, doubl
   return expansion_sign(r, lr);
 }
 
-int orient2d_slow(const double* a, const double* b, const double* c, double permanent) {
+__attribute__((noinline, cold)) int orient2d_slow(const double* a, const double* b, const double* c, double permanent) {
   const double* const p[3] = {a, b, c};
   if (!all_in_safe_range(p, 2)) return orient2d_integer(a, b, c);
   return orient2d_exact_tail(a, b, c, permanent);
@@ -160,13 +181,19 @@ int orient3d_exact_tail(const double* a, const double* b, const double* c, const
   if (adxt == 0.0 && adyt == 0.0 && adzt == 0.0 && bdxt == 0.0 && bdyt == 0.0 && bdzt == 0.0 && cdxt == 0.0 &&
       cdyt == 0.0 && cdzt == 0.0)
     return expansion_sign(e, n);
-  const double est = expansion_estimate(e, n);
+  double est = expansion_estimate(e, n);
   if (std::fabs(est) >= kO3ErrB * permanent) return sign_of(est);
+  // Stage C: first-order tail terms (Shewchuk 1997, orient3dadapt).
+  const double errbound = kO3ErrC * permanent + kResultErr * std::fabs(est);
+  est += (adz * ((bdx * cdyt + cdy * bdxt) - (bdy * cdxt + cdx * bdyt)) + adzt * (bdx * cdy - bdy * cdx)) +
+         (bdz * ((cdx * adyt + ady * cdxt) - (cdy * adxt + adx * cdyt)) + bdzt * (cdx * ady - cdy * adx)) +
+         (cdz * ((adx * bdyt + bdy * adxt) - (ady * bdxt + bdx * adyt)) + cdzt * (adx * bdy - ady * bdx));
+  if (std::fabs(est) >= errbound) return sign_of(est);
   return orient3d_raw_exact(a, b, c, d);
 }
 
 // After stage A failed (any finite input): zero-column shortcut, then L3 or L4.
-int orient3d_slow(const double* a, const double* b, const double* c, const double* d, double permanent) {
+__attribute__((noinline, cold)) int orient3d_slow(const double* a, const double* b, const double* c, const double* d, double permanent) {
   for (int k = 0; k < 3; ++k)  // a whole translated column is zero: the determinant is exactly 0
     if (a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) return 0;
   const double* const p[4] = {a, b, c, d};
@@ -175,9 +202,7 @@ int orient3d_slow(const double* a, const double* b, const double* c, const doubl
 }
 
 // Stage A on (already translated) differences. Returns ±1, or 0 when undecided (then *permanent is
-// set for stage B). Underflow margin: only the six minor products (error ≤ η each, later scaled by a
-// z difference) and the three outer products can underflow, so |error| ≤ 14η(Σ|z| + 1) beyond
-// Shewchuk's relative bound; T = 2^-1058·(Σ|z| + 1) covers it.
+// set for stage B). See "Guards" above: accepted only when |det| ≥ 2^-590 and Σ|z| ≤ 2^400.
 inline int orient3d_stage_a(double adx, double ady, double adz, double bdx, double bdy, double bdz, double cdx,
                             double cdy, double cdz, double* permanent_out) {
   const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
@@ -187,12 +212,12 @@ inline int orient3d_stage_a(double adx, double ady, double adz, double bdx, doub
   const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz);
   const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * az + (std::fabs(cdxady) + std::fabs(adxcdy)) * bz +
                            (std::fabs(adxbdy) + std::fabs(bdxady)) * cz;
-  const double threshold = kO3ErrA * permanent + 0x1p-1058 * ((az + bz + cz) + 1.0);
   *permanent_out = permanent;
-  if (permanent < kPermanentMax) {  // false for inf/NaN too
-    if (det > threshold) return 1;
-    if (-det > threshold) return -1;
-  }
+  const double abs_det = std::fabs(det);
+  // one branch for the whole test (non-short-circuit &)
+  if ((abs_det > kO3ErrA * permanent) & (abs_det >= 0x1p-590) & (permanent < kPermanentMax) &
+      ((az + bz + cz) <= 0x1p400))
+    return sign_of(det);
   return 0;
 }
 
@@ -217,7 +242,7 @@ int incircle_diff_exact(double adx, double ady, double bdx, double bdy, double c
   return expansion_sign(r, ls);
 }
 
-int incircle_slow(const double* a, const double* b, const double* c, const double* d) {
+__attribute__((noinline, cold)) int incircle_slow(const double* a, const double* b, const double* c, const double* d) {
   const double* const p[4] = {a, b, c, d};
   if (!all_in_safe_range(p, 2)) return incircle_integer(a, b, c, d);
   double adx, adxt, ady, adyt, bdx, bdxt, bdy, bdyt, cdx, cdxt, cdy, cdyt;
@@ -291,7 +316,7 @@ int insphere_diff_exact(const double (&ex)[4][3]) {
   return expansion_sign(acc1, lacc);
 }
 
-int insphere_slow(const double* a, const double* b, const double* c, const double* d, const double* e) {
+__attribute__((noinline, cold)) int insphere_slow(const double* a, const double* b, const double* c, const double* d, const double* e) {
   const double* const p[5] = {a, b, c, d, e};
   if (!all_in_safe_range(p, 3)) return insphere_integer(a, b, c, d, e);
   double ex[4][3];
@@ -323,15 +348,42 @@ int orient2d(const double* a, const double* b, const double* c) {
   const double detright = (a[1] - c[1]) * (b[0] - c[0]);
   const double det = detleft - detright;
   const double permanent = std::fabs(detleft) + std::fabs(detright);
-  const double threshold = kO2ErrA * permanent + 0x1p-1070;
-  if (permanent < kPermanentMax) {
-    if (det > threshold) return 1;
-    if (-det > threshold) return -1;
-  }
+  const double abs_det = std::fabs(det);
+  if ((abs_det > kO2ErrA * permanent) & (abs_det >= 0x1p-900) & (permanent < kPermanentMax)) return sign_of(det);
   return orient2d_slow(a, b, c, permanent);
 }
 
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
+#if defined(__SSE2__)
+  // Stage A with the x,y columns in SSE2 pairs: the same products, minors, sums and evaluation order
+  // as orient3d_stage_a (det = (adz·m1 + bdz·m2) + cdz·m3), so Shewchuk's bound applies unchanged;
+  // only the independent operations are paired. -ffp-contract=off keeps mul and add separate.
+  const __m128d dxy = _mm_loadu_pd(d);
+  const __m128d A = _mm_sub_pd(_mm_loadu_pd(a), dxy);  // (adx, ady)
+  const __m128d B = _mm_sub_pd(_mm_loadu_pd(b), dxy);  // (bdx, bdy)
+  const __m128d C = _mm_sub_pd(_mm_loadu_pd(c), dxy);  // (cdx, cdy)
+  const __m128d Z = _mm_sub_pd(_mm_set_pd(b[2], a[2]), _mm_set1_pd(d[2]));  // (adz, bdz)
+  const double cdz = c[2] - d[2];
+  const __m128d P1 = _mm_mul_pd(B, _mm_shuffle_pd(C, C, 1));  // (bdx·cdy, bdy·cdx)
+  const __m128d P2 = _mm_mul_pd(C, _mm_shuffle_pd(A, A, 1));  // (cdx·ady, cdy·adx)
+  const __m128d P3 = _mm_mul_pd(A, _mm_shuffle_pd(B, B, 1));  // (adx·bdy, ady·bdx)
+  const __m128d L = _mm_unpacklo_pd(P1, P2), H = _mm_unpackhi_pd(P1, P2);
+  const __m128d M = _mm_sub_pd(L, H);  // (m1, m2)
+  const double p3lo = _mm_cvtsd_f64(P3), p3hi = _mm_cvtsd_f64(_mm_unpackhi_pd(P3, P3));
+  const __m128d T = _mm_mul_pd(Z, M);  // (adz·m1, bdz·m2)
+  const double det = (_mm_cvtsd_f64(T) + _mm_cvtsd_f64(_mm_unpackhi_pd(T, T))) + cdz * (p3lo - p3hi);
+  const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  const __m128d Za = _mm_and_pd(Z, abs_mask);
+  const __m128d U = _mm_mul_pd(_mm_add_pd(_mm_and_pd(L, abs_mask), _mm_and_pd(H, abs_mask)), Za);
+  const double cz = std::fabs(cdz);
+  const double permanent =
+      (_mm_cvtsd_f64(U) + _mm_cvtsd_f64(_mm_unpackhi_pd(U, U))) + (std::fabs(p3lo) + std::fabs(p3hi)) * cz;
+  const double zsum = (_mm_cvtsd_f64(Za) + _mm_cvtsd_f64(_mm_unpackhi_pd(Za, Za))) + cz;
+  const double abs_det = std::fabs(det);
+  if ((abs_det > kO3ErrA * permanent) & (abs_det >= 0x1p-590) & (permanent < kPermanentMax) & (zsum <= 0x1p400))
+    return sign_of(det);
+  return orient3d_slow(a, b, c, d, permanent);
+#else
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
@@ -339,6 +391,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   const int s = orient3d_stage_a(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz, &permanent);
   if (s != 0) return s;
   return orient3d_slow(a, b, c, d, permanent);
+#endif
 }
 
 int incircle(const double* a, const double* b, const double* c, const double* d) {
@@ -351,13 +404,10 @@ int incircle(const double* a, const double* b, const double* c, const double* d)
   const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * alift +
                            (std::fabs(cdxady) + std::fabs(adxcdy)) * blift +
                            (std::fabs(adxbdy) + std::fabs(bdxady)) * clift;
-  // Underflow margin: products of differences (≤ η each) scaled by at most a lift or a minor, both
-  // bounded by the lifts: |error| ≤ 64η(Σlift + 1) beyond the relative bound.
-  const double threshold = kIcErrA * permanent + 0x1p-1055 * ((alift + blift + clift) + 1.0);
-  if (permanent < kPermanentMax) {
-    if (det > threshold) return 1;
-    if (-det > threshold) return -1;
-  }
+  const double abs_det = std::fabs(det);
+  if ((abs_det > kIcErrA * permanent) & (abs_det >= 0x1p-590) & (permanent < kPermanentMax) &
+      ((alift + blift + clift) <= 0x1p400))
+    return sign_of(det);
   return incircle_slow(a, b, c, d);
 }
 
@@ -390,14 +440,10 @@ int insphere(const double* a, const double* b, const double* c, const double* d,
       ((dexaeyp + aexdeyp) * cezp + (aexceyp + cexaeyp) * dezp + (cexdeyp + dexceyp) * aezp) * blift +
       ((aexbeyp + bexaeyp) * dezp + (bexdeyp + dexbeyp) * aezp + (dexaeyp + aexdeyp) * bezp) * clift +
       ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
-  // Underflow margin: an underflowed product (≤ η) is scaled by at most a degree-3 factor bounded by
-  // (Σlift + 1)^2; T = 2^-1050·(Σlift + 1)^2 covers the few hundred such paths.
-  const double lifts = (alift + blift + clift + dlift) + 1.0;
-  const double threshold = kIsErrA * permanent + 0x1p-1050 * (lifts * lifts);
-  if (permanent < kPermanentMax) {
-    if (det > threshold) return 1;
-    if (-det > threshold) return -1;
-  }
+  const double abs_det = std::fabs(det);
+  if ((abs_det > kIsErrA * permanent) & (abs_det >= 0x1p-580) & (permanent < kPermanentMax) &
+      ((alift + blift + clift + dlift) <= 0x1p200))
+    return sign_of(det);
   return insphere_slow(a, b, c, d, e);
 }
 
@@ -440,25 +486,30 @@ struct MeshCensus {
 MeshCensus census(const double* xyz, std::size_t num_vertices) {
   MeshCensus c;
   if (num_vertices == 0) return c;
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  bool finite = true, safe = true;
+  // Branch-free reductions. poison = Σ x·0 is 0 for finite x and NaN as soon as one x is ±inf or NaN.
+  // min_abs collects the smallest nonzero magnitude (zeros map to +inf).
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double max_abs = 0.0, min_abs = HUGE_VAL, poison = 0.0;
   for (std::size_t v = 0; v < num_vertices; ++v) {
     for (int k = 0; k < 3; ++k) {
       const double x = xyz[3 * v + k];
-      finite &= std::isfinite(x);
-      safe &= in_safe_range(x);
-      lo[k] = std::min(lo[k], x);
-      hi[k] = std::max(hi[k], x);
+      const double ax = std::fabs(x);
+      poison += x * 0.0;
+      lo[k] = x < lo[k] ? x : lo[k];
+      hi[k] = x > hi[k] ? x : hi[k];
+      max_abs = ax > max_abs ? ax : max_abs;
+      const double nz = ax == 0.0 ? HUGE_VAL : ax;
+      min_abs = nz < min_abs ? nz : min_abs;
     }
   }
-  c.finite = finite;
-  c.safe = safe && finite;
+  c.finite = poison == 0.0;
+  c.safe = c.finite && max_abs <= 0x1p201 && min_abs >= 0x1p-142;
   for (int k = 0; k < 3; ++k) c.extent[k] = hi[k] - lo[k];
   return c;
 }
 
 // Per-tet work once L1 did not decide, on a mesh known to be safe.
-int orient3d_safe_after_static(const double* a, const double* b, const double* c, const double* d) {
+__attribute__((noinline)) int orient3d_safe_after_static(const double* a, const double* b, const double* c, const double* d) {
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
@@ -489,24 +540,74 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
   for (int k = 0; k < 3; ++k) use_static &= (mesh.extent[k] >= 1e-97 && mesh.extent[k] < 1e102);
   const double static_bound =
       use_static ? kO3Static * mesh.extent[0] * mesh.extent[1] * mesh.extent[2] : HUGE_VAL;
+  // Chunks of kChunk tets: pass 1 validates the ids (running max, no pointer is formed from a bad id)
+  // and computes the bare determinant + the L1 compare, with no call in the loop; pass 2 counts
+  // branch-free and resolves the undecided (0) entries through the guarded layers.
+  constexpr std::size_t kChunk = 2048;
+  std::int8_t chunk_signs[kChunk];
   std::size_t positive = 0, negative = 0;
-  for (std::size_t t = 0; t < num_tets; ++t) {
-    const std::uint32_t* v = tets + 4 * t;
-    if ((v[0] >= num_vertices) | (v[1] >= num_vertices) | (v[2] >= num_vertices) | (v[3] >= num_vertices))
-      return fail("tet vertex id out of range");
-    const double* a = xyz + 3 * std::size_t(v[0]);
-    const double* b = xyz + 3 * std::size_t(v[1]);
-    const double* c = xyz + 3 * std::size_t(v[2]);
-    const double* d = xyz + 3 * std::size_t(v[3]);
-    const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-    const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-    const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-    const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-    int s = (det > static_bound) - (det < -static_bound);
-    if (s == 0) s = mesh.safe ? orient3d_safe_after_static(a, b, c, d) : orient3d(a, b, c, d);
-    if (signs) signs[t] = static_cast<std::int8_t>(s);
-    positive += (s > 0);
-    negative += (s < 0);
+  for (std::size_t first = 0; first < num_tets; first += kChunk) {
+    const std::size_t count = std::min(kChunk, num_tets - first);
+    std::int8_t* out = signs ? signs + first : chunk_signs;
+    const std::uint32_t* chunk = tets + 4 * first;
+    std::uint32_t max_id = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const std::uint32_t* v = chunk + 4 * t;
+      const std::uint32_t m01 = v[0] > v[1] ? v[0] : v[1], m23 = v[2] > v[3] ? v[2] : v[3];
+      const std::uint32_t m = m01 > m23 ? m01 : m23;
+      max_id = m > max_id ? m : max_id;
+      if (m >= num_vertices) break;  // reported after the loop, before any pointer is formed
+      const double* a = xyz + 3 * std::size_t(v[0]);
+      const double* b = xyz + 3 * std::size_t(v[1]);
+      const double* c = xyz + 3 * std::size_t(v[2]);
+      const double* d = xyz + 3 * std::size_t(v[3]);
+#if defined(__SSE2__)
+      // Same expression tree as below with the x,y columns paired (see orient3d()).
+      const __m128d dxy = _mm_loadu_pd(d);
+      const __m128d A = _mm_sub_pd(_mm_loadu_pd(a), dxy);
+      const __m128d B = _mm_sub_pd(_mm_loadu_pd(b), dxy);
+      const __m128d C = _mm_sub_pd(_mm_loadu_pd(c), dxy);
+      const __m128d Z = _mm_sub_pd(_mm_set_pd(b[2], a[2]), _mm_set1_pd(d[2]));
+      const double cdz = c[2] - d[2];
+      const __m128d P1 = _mm_mul_pd(B, _mm_shuffle_pd(C, C, 1));
+      const __m128d P2 = _mm_mul_pd(C, _mm_shuffle_pd(A, A, 1));
+      const __m128d P3 = _mm_mul_pd(A, _mm_shuffle_pd(B, B, 1));
+      const __m128d T = _mm_mul_pd(Z, _mm_sub_pd(_mm_unpacklo_pd(P1, P2), _mm_unpackhi_pd(P1, P2)));
+      const double det = (_mm_cvtsd_f64(T) + _mm_cvtsd_f64(_mm_unpackhi_pd(T, T))) +
+                         cdz * (_mm_cvtsd_f64(P3) - _mm_cvtsd_f64(_mm_unpackhi_pd(P3, P3)));
+#else
+      const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+      const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+      const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+      const double det =
+          adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+#endif
+      const int s = (det > static_bound) - (det < -static_bound);
+      out[t] = static_cast<std::int8_t>(s);
+    }
+    if (max_id >= num_vertices) return fail("tet vertex id out of range");
+    // Branch-free (vectorised) count; only chunks with undecided entries take the resolve loop.
+    std::size_t pos = 0, neg = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      pos += out[t] > 0;
+      neg += out[t] < 0;
+    }
+    if (pos + neg != count) {
+      for (std::size_t t = 0; t < count; ++t) {
+        if (out[t] != 0) continue;
+        const std::uint32_t* v = chunk + 4 * t;
+        const double* a = xyz + 3 * std::size_t(v[0]);
+        const double* b = xyz + 3 * std::size_t(v[1]);
+        const double* c = xyz + 3 * std::size_t(v[2]);
+        const double* d = xyz + 3 * std::size_t(v[3]);
+        const int s = mesh.safe ? orient3d_safe_after_static(a, b, c, d) : orient3d(a, b, c, d);
+        out[t] = static_cast<std::int8_t>(s);
+        pos += s > 0;
+        neg += s < 0;
+      }
+    }
+    positive += pos;
+    negative += neg;
   }
   TetSignCounts r;
   r.positive = positive;
