@@ -143,7 +143,7 @@ TEST_CASE("rationals: exact conversion agrees with doubles; rational-only degene
   CHECK_THROWS_AS(check_map_rational(in, rin, in, rout), Error);
 }
 
-TEST_CASE("viewer pairs: bunny, duck, bimba valid; hand 95+3 and max 45+198 invalid; mismatches exit 2") {
+TEST_CASE("viewer pairs: bunny; duck; bimba valid; hand 95+3 and max 45+198 invalid; mismatches exit 2") {
   VOLMAP_REQUIRE_DATA(dir, "volmap/viewer-samples");
   const auto tool = volmap_test::tool("volmap-map-check").string();
   for (const char* name : {"bunny", "duck", "bimba"}) {
@@ -181,7 +181,7 @@ TEST_CASE("viewer pairs: bunny, duck, bimba valid; hand 95+3 and max 45+198 inva
   CHECK(vmap_test::run(tool + " /nonexistent.mesh /nonexistent2.mesh").code == 2);
 }
 
-TEST_CASE("duck pair on rationals written from the doubles: same verdict, also 3-file form") {
+TEST_CASE("duck pair on rationals written from the doubles: same verdict; also 3-file form") {
   VOLMAP_REQUIRE_DATA(in_path, "volmap/viewer-samples/duck_input.mesh");
   VOLMAP_REQUIRE_DATA(out_path, "volmap/viewer-samples/duck_output.mesh");
   const TetMeshData in = read_medit(in_path.string());
@@ -209,7 +209,7 @@ TEST_CASE("duck pair on rationals written from the doubles: same verdict, also 3
   fs::remove_all(d);
 }
 
-TEST_CASE("tools on malformed or mismatched files: exit 2, one-line reason, no crash") {
+TEST_CASE("tools on malformed or mismatched files: exit 2; one-line reason; no crash") {
   const fs::path d = scratch();
   const TetMeshData grid = vmap_test::kuhn_grid(2);
   write_medit((d / "a.mesh").string(), grid);

@@ -41,7 +41,7 @@ TetMeshData transformed(const TetMeshData& m, const double a[3][3]) {
 
 }  // namespace
 
-TEST_CASE("analytic maps: identity, uniform scale, rotation, stretch") {
+TEST_CASE("analytic maps: identity; uniform scale; rotation; stretch") {
   const TetMeshData grid = vmap_test::kuhn_grid(2);
   const double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   MetricsReport r = compute_metrics(grid, transformed(grid, I));
@@ -88,7 +88,7 @@ TEST_CASE("analytic maps: identity, uniform scale, rotation, stretch") {
   CHECK(r.energy[2].min == 10.0);
 }
 
-TEST_CASE("regular tet: TRR −1, quality 1, scaled Jacobian +1 (VOLMAP-positive)") {
+TEST_CASE("regular tet: TRR −1; quality 1; scaled Jacobian +1 (VOLMAP-positive)") {
   // Regular tet, ordered VOLMAP-positive.
   double p[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
   if (volmap::orient3d(p[0], p[1], p[2], p[3]) < 0) std::swap(p[0], p[1]);
@@ -97,7 +97,7 @@ TEST_CASE("regular tet: TRR −1, quality 1, scaled Jacobian +1 (VOLMAP-positive
   CHECK(tet_scaled_jacobian_volmap(p[1], p[0], p[2], p[3]) == doctest::Approx(-1.0));
 }
 
-TEST_CASE("all tets inverted: energies undefined (no NaN in JSON), count exact") {
+TEST_CASE("all tets inverted: energies undefined (no NaN in JSON); count exact") {
   const TetMeshData grid = vmap_test::kuhn_grid(2);
   const double M[3][3] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // mirror
   const MetricsReport r = compute_metrics(grid, transformed(grid, M));
@@ -131,7 +131,7 @@ TEST_CASE("pairing by connectivity: reordered output tets give the same numbers;
   CHECK_THROWS_AS(compute_metrics(bad_in, out), Error);
 }
 
-TEST_CASE("VOLMAP oracle (§9): bunny, bimba, bone identity to the printed digits; duck to 1e-5") {
+TEST_CASE("VOLMAP oracle (§9): bunny; bimba; bone identity to the printed digits; duck to 1e-5") {
   VOLMAP_REQUIRE_DATA(dir, "volmap/viewer-samples");
   struct Row {
     const char* name;
@@ -185,7 +185,7 @@ TEST_CASE("VOLMAP oracle (§9): bunny, bimba, bone identity to the printed digit
   }
 }
 
-TEST_CASE("bone identity via the tool: VOLMAP text, CSV line and JSON") {
+TEST_CASE("bone identity via the tool: VOLMAP text; CSV line and JSON") {
   VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
   const auto tool = volmap_test::tool("volmap-metrics").string();
   auto r = vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(bone.string()));
@@ -214,7 +214,7 @@ TEST_CASE("bone identity via the tool: VOLMAP text, CSV line and JSON") {
   CHECK(j["energies"]["arap"]["max"].get<double>() < 1e-20);
 }
 
-TEST_CASE("tool --vtu: per-tet cell data readable back, inverted flags match the count") {
+TEST_CASE("tool --vtu: per-tet cell data readable back; inverted flags match the count") {
   VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
   const TetMeshData in = read_medit(bone.string());
   TetMeshData out = in;

@@ -117,7 +117,7 @@ TetMeshData split_tet() {
 
 }  // namespace
 
-TEST_CASE("unique_tet_edges: sorted unique pairs, errors on bad ids") {
+TEST_CASE("unique_tet_edges: sorted unique pairs; errors on bad ids") {
   TetMeshData m = split_tet();
   const auto edges = unique_tet_edges(m);
   CHECK(edges.size() == 2 * 10);  // K5 on 5 vertices
@@ -224,7 +224,7 @@ TEST_CASE("solve_uniform_laplacian: reusable with any fixed mask; singular syste
   CHECK_THROWS_AS(solve_uniform_laplacian(4, edges, fixed, xyz), Error);  // size mismatch
 }
 
-TEST_CASE("G1 log.csv oracle, default subset: bone and duck x cube/tet/pyr/octa inverted counts") {
+TEST_CASE("G1 log.csv oracle; default subset: bone and duck x cube/tet/pyr/octa inverted counts") {
   VOLMAP_REQUIRE_DATA(log_path, "volmap/G1/log.csv");
   const fs::path root = volmap_test::data_root();
   std::size_t checked = 0;
@@ -239,7 +239,7 @@ TEST_CASE("G1 log.csv oracle, default subset: bone and duck x cube/tet/pyr/octa 
   CHECK(checked == 8);
 }
 
-TEST_CASE("volmap-tutte3d tool: writes the map, certifies the file on disk, exit 1 when not injective") {
+TEST_CASE("volmap-tutte3d tool: writes the map; certifies the file on disk; exit 1 when not injective") {
   VOLMAP_REQUIRE_DATA(mesh, "volmap/G1/bone.mesh");
   VOLMAP_REQUIRE_DATA(map, "volmap/G1_cube/bone_cube.txt");
   const fs::path out = fs::temp_directory_path() / ("vmap_tutte_bone_" + std::to_string(::getpid()) + ".mesh");
@@ -294,7 +294,7 @@ TEST_CASE("injective Tutte map certifies with exit 0") {
 }
 
 TEST_SUITE("long") {
-  TEST_CASE("G1 log.csv oracle, all rows whose mesh is present: inverted count and scaled Jacobian (cols 8-10)") {
+  TEST_CASE("G1 log.csv oracle on all 80 rows whose mesh is present: inverted count and scaled Jacobian cols 8-10") {
     VOLMAP_REQUIRE_DATA(log_path, "volmap/G1/log.csv");
     const fs::path root = volmap_test::data_root();
     std::size_t checked = 0, matched = 0, sj_matched = 0;
