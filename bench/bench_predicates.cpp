@@ -11,6 +11,7 @@
 
 #include "../predicates/testing/oracle.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -271,6 +272,30 @@ void batch_naive(benchmark::State& state) {  // same loop, plain double determin
   state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
 }
 BENCHMARK(batch_naive)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// Rational coordinates (i/56 per axis, not dyadic): the double prefilter decides; range(0) = 1 makes
+// the upper half exactly flat (z = 28/56), which goes to the homogeneous integer determinant.
+void batch_volmap_rational(benchmark::State& state) {
+  const Mesh& m = mesh(0);
+  const std::size_t nt = m.tets.size() / 4, nv = m.xyz.size() / 3;
+  std::vector<volmap::Rational> rxyz(3 * nv);
+  for (std::size_t i = 0; i < 3 * nv; ++i) {
+    long g = std::lround(m.xyz[i] * 64);
+    if (state.range(0) == 1 && i % 3 == 2 && g > kGrid / 2) g = kGrid / 2;
+    rxyz[i] = volmap::Rational(g) / kGrid;
+  }
+  std::vector<std::int8_t> signs(nt);
+  volmap::TetSignCounts r;
+  for (auto _ : state) {
+    r = volmap::orient3d_tets(rxyz.data(), nv, m.tets.data(), nt, signs.data());
+    benchmark::DoNotOptimize(signs.data());
+  }
+  state.counters["zero_tets"] = double(r.zero);
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(double(nt), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
+}
+BENCHMARK(batch_volmap_rational)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 #ifdef VOLMAP_HAVE_CGAL
 void batch_cgal_epick(benchmark::State& state) {

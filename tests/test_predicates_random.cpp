@@ -182,3 +182,26 @@ TEST_CASE("insphere: 10^6 integer cases + 2·10^4 doubles vs GMP oracle") {
   CHECK(t.wrong == 0);
   CHECK(t.naive_wrong > 100);
 }
+
+// Heavier volumes of general doubles (mpq oracle): ctest label "long", excluded from the default run.
+TEST_SUITE("long") {
+  TEST_CASE("all four predicates: 10^6 general doubles each vs GMP mpq oracle") {
+    DoubleSource ds(99);
+    long wrong[4] = {0, 0, 0, 0};
+    double p[5][3];
+    for (int i = 0; i < 1000000; ++i) {
+      ds.fill(p, 3, 2, i % 4);
+      wrong[0] += volmap::orient2d(p[0], p[1], p[2]) != or_::orient2d(p[0], p[1], p[2]);
+      ds.fill(p, 4, 3, i % 4);
+      wrong[1] += volmap::orient3d(p[0], p[1], p[2], p[3]) != or_::orient3d(p[0], p[1], p[2], p[3]);
+      ds.fill(p, 4, 2, i % 4);
+      wrong[2] += volmap::incircle(p[0], p[1], p[2], p[3]) != or_::incircle(p[0], p[1], p[2], p[3]);
+      ds.fill(p, 5, 3, i % 4);
+      wrong[3] += volmap::insphere(p[0], p[1], p[2], p[3], p[4]) != or_::insphere(p[0], p[1], p[2], p[3], p[4]);
+    }
+    CHECK(wrong[0] == 0);
+    CHECK(wrong[1] == 0);
+    CHECK(wrong[2] == 0);
+    CHECK(wrong[3] == 0);
+  }
+}

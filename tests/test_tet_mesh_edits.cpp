@@ -309,13 +309,16 @@ TEST_CASE("properties: value semantics, detach, survive a moved mesh") {
   CHECK(on_other[TetId(0)] == 4);
 }
 
-TEST_CASE("randomized edits: splits and flips with invariants and exact positivity after each") {
-  std::mt19937_64 rng(12345);
-  TetMesh m(generate_kuhn_grid(3, 3, 3));
+namespace {
+// Random edits on a Kuhn grid: every split is checked exactly beforehand (children strictly positive)
+// and its children exactly afterwards; flips only when can_flip_* says so. check_invariants() after
+// every edit, the full exact positivity pass every `full_every` edits.
+void run_random_edits(std::size_t grid, int kOps, std::uint64_t seed, int full_every) {
+  std::mt19937_64 rng(seed);
+  TetMesh m(generate_kuhn_grid(grid, grid, grid));
   TetProperty<std::uint32_t> generation(m, 0);
   std::uniform_real_distribution<double> uni(0.05, 1.0);
   std::size_t done[5] = {0, 0, 0, 0, 0};
-  const int kOps = 5000;
   std::vector<TetId> star;
   for (int op = 0; op < kOps; ++op) {
     std::uint32_t t;
@@ -386,15 +389,15 @@ TEST_CASE("randomized edits: splits and flips with invariants and exact positivi
     const InvariantReport r = m.check_invariants(false);
     INFO("op " << op << " kind " << kind << ": " << r.problem);
     REQUIRE(r.ok);
-    if (op % 500 == 0) require_ok(m, true);  // full exact positivity pass now and then
+    if (op % full_every == 0) require_ok(m, true);  // full exact positivity pass now and then
   }
   MESSAGE("tet splits " << done[0] << ", face splits " << done[1] << ", edge splits " << done[2] << ", 2-3 flips "
                         << done[3] << ", 3-2 flips " << done[4] << "; tets " << m.num_tets());
-  CHECK(done[0] > 100);
-  CHECK(done[1] > 100);
-  CHECK(done[2] > 100);
-  CHECK(done[3] > 20);
-  CHECK(done[4] > 5);
+  CHECK(done[0] > std::size_t(kOps / 50));
+  CHECK(done[1] > std::size_t(kOps / 50));
+  CHECK(done[2] > std::size_t(kOps / 50));
+  CHECK(done[3] > std::size_t(kOps / 250));
+  CHECK(done[4] > std::size_t(kOps / 1000));
   require_ok(m, true);
   const TopologyReport topo = analyze_topology(m.to_data());
   CHECK(topo.boundary_genus_zero);
@@ -406,4 +409,13 @@ TEST_CASE("randomized edits: splits and flips with invariants and exact positivi
   // Rebuilding from the flat arrays gives the same adjacency.
   const TetMesh rebuilt(m.to_data());
   CHECK(rebuilt.opposite_array() == m.opposite_array());
+}
+}  // namespace
+
+TEST_CASE("randomized edits: splits and flips with invariants and exact positivity after each") {
+  run_random_edits(3, 5000, 12345, 500);
+}
+
+TEST_SUITE("long") {
+  TEST_CASE("randomized edits long run with 40000 edits on a 5^3 grid") { run_random_edits(5, 40000, 987, 2000); }
 }

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print one JSON object");
   app.add_option("--csv", csv_path, "append VOLMAP's CSV line to this file");
   app.add_option("--original", original_path, "unrefined source mesh: report the size ratio against it");
+  app.add_option("--vtu", vtu_path, "write the output mesh with per-tet cell data (energies, inverted, quality)");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     volmap::MetricsOptions options;
     options.upper = upper;
+    options.keep_per_tet = !vtu_path.empty();
     const volmap::MetricsReport r = volmap::compute_metrics(in, out, options);
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
@@ -58,6 +60,27 @@ int main(int argc, char** argv) {
       if (!log) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "cannot open CSV file for appending");
       log << volmap::format_metrics_csv_line(out_path, r) << "\n";
       if (!log.flush()) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "write failed");
+    }
+    if (!vtu_path.empty()) {
+      // Cells in the INPUT's tet order and vertex order (the order the metrics were evaluated in).
+      volmap::TetMeshData cells = out;
+      cells.tets = in.tets;
+      cells.tet_labels = in.tet_labels;
+      std::vector<volmap::CellDataArray> data;
+      for (int e = 0; e < volmap::kNumEnergies; ++e) {
+        data.push_back({volmap::energy_name(static_cast<volmap::Energy>(e)), r.per_tet.energy[e]});
+      }
+      std::vector<double> inverted(r.num_tets), orientation(r.num_tets);
+      for (std::size_t t = 0; t < r.num_tets; ++t) {
+        inverted[t] = r.per_tet.orientation[t] <= 0 ? 1.0 : 0.0;
+        orientation[t] = r.per_tet.orientation[t];
+      }
+      data.push_back({"inverted", std::move(inverted)});
+      data.push_back({"orientation", std::move(orientation)});
+      data.push_back({"quality_out", r.per_tet.quality_out});
+      data.push_back({"quality_in", r.per_tet.quality_in});
+      data.push_back({"scaled_jacobian", r.per_tet.scaled_jacobian_out});
+      volmap::write_vtu(vtu_path, cells, data);
     }
     const double total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (json) {

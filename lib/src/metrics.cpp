@@ -74,40 +74,59 @@ double clamp_energy(double d, double lower, double upper) {
   return std::clamp(d, lower, upper);
 }
 
-// Unclamped energies of J from its invariants; `scale` multiplies J (scale-normalised variant).
-void energies_from_jacobian(const Mat3 j, double det, double scale, double upper, double* out) {
-  double i1 = 0;
+// Rotation invariants of J: I1 = ‖J‖², I2 = ‖cof J‖², det J, and (only when ARAP can be below the
+// clamp) the eigenvalues of JᵀJ = squared singular values.
+struct Invariants {
+  double i1 = 0, i2 = 0, det = 0;
+  double lambda[3] = {0, 0, 0};
+  bool have_lambda = false;
+};
+
+Invariants invariants_of(const Mat3 j, double det, double upper, const double* scales, int num_scales) {
+  Invariants v;
+  v.det = det;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) i1 += j[r][c] * j[r][c];
-  // Cofactor matrix entries (2×2 minors).
-  double i2 = 0;
+    for (int c = 0; c < 3; ++c) v.i1 += j[r][c] * j[r][c];
   for (int r = 0; r < 3; ++r) {
     const int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
     for (int c = 0; c < 3; ++c) {
       const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
       const double minor = j[r1][c1] * j[r2][c2] - j[r1][c2] * j[r2][c1];
-      i2 += minor * minor;
+      v.i2 += minor * minor;
     }
   }
-  // C = JᵀJ for ARAP's singular values.
-  Mat3 cmat;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) cmat[r][c] = j[0][r] * j[0][c] + j[1][r] * j[1][c] + j[2][r] * j[2][c];
-  double lambda[3];
-  symmetric_eigenvalues(cmat, lambda);
+  // ARAP = Σ(sᵢ−1)² ≥ (√I1 − √3)² (since Σsᵢ ≤ √(3·I1)): skip the eigenvalues when every requested
+  // scale already saturates the clamp.
+  bool need = false;
+  for (int k = 0; k < num_scales; ++k) {
+    const double root = std::sqrt(v.i1) * scales[k] - std::sqrt(3.0);
+    need = need || !(root * root >= upper);
+  }
+  if (need) {
+    Mat3 cmat;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) cmat[r][c] = j[0][r] * j[0][c] + j[1][r] * j[1][c] + j[2][r] * j[2][c];
+    symmetric_eigenvalues(cmat, v.lambda);
+    v.have_lambda = true;
+  }
+  return v;
+}
 
+// Clamped energies of scale·J.
+void energies_from_invariants(const Invariants& v, double scale, double upper, double* out) {
   const double s2 = scale * scale;
-  i1 *= s2;
-  i2 *= s2 * s2;
-  det *= s2 * scale;
+  const double i1 = v.i1 * s2, i2 = v.i2 * s2 * s2, det = v.det * s2 * scale;
   const double det2 = det * det;
   const double conformal = i1 / (3.0 * std::pow(std::fabs(det), 2.0 / 3.0));
   const double dirichlet = i1;
   const double symdir = i1 + i2 / det2;
-  double arap = 0;
-  for (double l : lambda) {
-    const double s = std::sqrt(std::max(l, 0.0) * s2);
-    arap += (s - 1.0) * (s - 1.0);
+  double arap = upper;
+  if (v.have_lambda) {
+    arap = 0;
+    for (double l : v.lambda) {
+      const double s = std::sqrt(std::max(l, 0.0) * s2);
+      arap += (s - 1.0) * (s - 1.0);
+    }
   }
   const double mips = (i1 * i2 - det2) / (8.0 * det2);
   out[0] = clamp_energy(conformal, 1.0, upper);
@@ -201,7 +220,8 @@ std::array<double, kNumEnergies> tet_energies(const double* const in[4], const d
     e.fill(upper);
     return e;
   }
-  energies_from_jacobian(j, det, 1.0, upper, e.data());
+  const double unit = 1.0;
+  energies_from_invariants(invariants_of(j, det, upper, &unit, 1), 1.0, upper, e.data());
   return e;
 }
 
@@ -292,8 +312,10 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
         Mat3 j;
         double det = 0;
         if (jacobian(pin, pout, j, det)) {
-          energies_from_jacobian(j, det, 1.0, upper, f);
-          energies_from_jacobian(j, det, scale, upper, f + kNumEnergies);
+          const double scales[2] = {1.0, scale};
+          const Invariants inv = invariants_of(j, det, upper, scales, 2);
+          energies_from_invariants(inv, 1.0, upper, f);
+          energies_from_invariants(inv, scale, upper, f + kNumEnergies);
         } else {
           std::fill(f, f + 2 * kNumEnergies, upper);
         }
@@ -306,27 +328,44 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
     }
   });
 
-  // Serial reduction in tet order (VOLMAP's summation order).
-  for (int e = 0; e < kNumEnergies; ++e) {
-    const double lower = energy_lower_bound(static_cast<Energy>(e));
-    for (int scaled = 0; scaled < 2; ++scaled) {
-      RangeStats& stats = scaled ? report.energy_scaled[e] : report.energy[e];
-      double sum = 0, weight = 0, mn = upper, mx = lower;
-      bool any = false;
-      for (std::size_t t = 0; t < nt; ++t) {
-        if (sign_out[t] <= 0) continue;
-        const double d = field[static_cast<std::size_t>(kFields) * t + scaled * kNumEnergies + e];
-        const double w = std::fabs(vol_out[t]) * (scaled ? scale * scale * scale : 1.0);
-        any = true;
-        mn = std::min(mn, d);
-        mx = std::max(mx, d);
-        sum += d * w;
-        weight += w;
+  // Serial reduction in tet order (VOLMAP's summation order), all energies in one pass.
+  {
+    constexpr int kSets = 2 * kNumEnergies;  // unscaled then scale-normalised
+    double sum[kSets] = {}, mn[kSets], mx[kSets];
+    double weight = 0, weight_scaled = 0;
+    for (int e = 0; e < kSets; ++e) {
+      mn[e] = upper;
+      mx[e] = energy_lower_bound(static_cast<Energy>(e % kNumEnergies));
+    }
+    const double cube = scale * scale * scale;
+    bool any = false;
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (sign_out[t] <= 0) continue;
+      any = true;
+      const double* f = &field[static_cast<std::size_t>(kFields) * t];
+      const double w = std::fabs(vol_out[t]);
+      for (int e = 0; e < kNumEnergies; ++e) {
+        const double d = f[e];
+        mn[e] = std::min(mn[e], d);
+        mx[e] = std::max(mx[e], d);
+        sum[e] += d * w;
       }
+      const double ws = w * cube;
+      for (int e = kNumEnergies; e < kSets; ++e) {
+        const double d = f[e];
+        mn[e] = std::min(mn[e], d);
+        mx[e] = std::max(mx[e], d);
+        sum[e] += d * ws;
+      }
+      weight += w;
+      weight_scaled += ws;
+    }
+    for (int e = 0; e < kSets; ++e) {
+      RangeStats& stats = e < kNumEnergies ? report.energy[e] : report.energy_scaled[e - kNumEnergies];
       stats.defined = any;
-      stats.min = mn;
-      stats.max = mx;
-      stats.mean = any ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+      stats.min = mn[e];
+      stats.max = mx[e];
+      stats.mean = any ? sum[e] / (e < kNumEnergies ? weight : weight_scaled) : std::numeric_limits<double>::quiet_NaN();
     }
   }
   {

@@ -1,14 +1,18 @@
 // tutte3d.cpp — Tutte 3D baseline: uniform Laplacian over unique edges, hard Dirichlet boundary,
-// one SimplicialLDLT factorisation of L_II with three right-hand sides (mapping.md §2).
+// one sparse Cholesky factorisation of L_II (SimplicialLLT by default, as cinolib; or SimplicialLDLT)
+// with three right-hand sides (mapping.md §2).
 // L_II is assembled directly in compressed-column form (lower triangle): free vertices are numbered
 // in increasing vertex id, so the sorted edge list (a<b) yields each column's rows already sorted.
 #include <volmap/error.hpp>
 #include <volmap/tutte3d.hpp>
 
 #include <Eigen/Sparse>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <tbb/parallel_sort.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -23,10 +27,12 @@ double seconds_since(Clock::time_point start) {
 }  // namespace
 
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
+  // Counting sort of the 6 edges per tet by their smaller endpoint a, then a small sort + unique of
+  // each a's bucket of larger endpoints b (buckets hold ~30 entries): O(#tets), no hashing, no maps.
   const std::size_t nt = mesh.num_tets();
   const std::size_t nv = mesh.num_vertices();
-  std::vector<std::uint64_t> keys(6 * nt);
   static constexpr int kEdgeLocal[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  std::vector<std::uint32_t> offset(nv + 1, 0);
   for (std::size_t t = 0; t < nt; ++t) {
     const std::uint32_t* tet = &mesh.tets[4 * t];
     for (int k = 0; k < 4; ++k) {
@@ -36,25 +42,51 @@ std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
       }
     }
     for (int e = 0; e < 6; ++e) {
-      std::uint64_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
+      const std::uint32_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
       if (a == b) throw_bad_input("", 0, "tet " + std::to_string(t) + " repeats vertex " + std::to_string(a));
-      if (a > b) std::swap(a, b);
-      keys[6 * t + e] = (a << 32) | b;
+      ++offset[std::min(a, b) + 1];
     }
   }
-  tbb::parallel_sort(keys.begin(), keys.end());
-  std::vector<std::uint32_t> edges;
-  edges.reserve(keys.size() / 3 + 2);
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    if (i > 0 && keys[i] == keys[i - 1]) continue;
-    edges.push_back(static_cast<std::uint32_t>(keys[i] >> 32));
-    edges.push_back(static_cast<std::uint32_t>(keys[i] & 0xffffffffu));
+  for (std::size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
+  std::vector<std::uint32_t> larger(6 * nt);
+  {
+    std::vector<std::uint32_t> cursor(offset.begin(), offset.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::uint32_t* tet = &mesh.tets[4 * t];
+      for (int e = 0; e < 6; ++e) {
+        const std::uint32_t a = tet[kEdgeLocal[e][0]], b = tet[kEdgeLocal[e][1]];
+        larger[cursor[std::min(a, b)]++] = std::max(a, b);
+      }
+    }
   }
+  // Sort + unique each bucket in place; count the unique entries per vertex.
+  std::vector<std::uint32_t> unique_count(nv + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      std::uint32_t* first = larger.data() + offset[v];
+      std::uint32_t* last = larger.data() + offset[v + 1];
+      std::sort(first, last);
+      unique_count[v + 1] = static_cast<std::uint32_t>(std::unique(first, last) - first);
+    }
+  });
+  for (std::size_t v = 0; v < nv; ++v) unique_count[v + 1] += unique_count[v];
+  std::vector<std::uint32_t> edges(2 * static_cast<std::size_t>(unique_count[nv]));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      std::size_t out = 2 * static_cast<std::size_t>(unique_count[v]);
+      const std::uint32_t count = unique_count[v + 1] - unique_count[v];
+      for (std::uint32_t k = 0; k < count; ++k) {
+        edges[out++] = static_cast<std::uint32_t>(v);
+        edges[out++] = larger[offset[v] + k];
+      }
+    }
+  });
   return edges;
 }
 
 Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vector<std::uint32_t>& edges,
-                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz) {
+                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz,
+                                       SparseFactorization factorization) {
   if (fixed.size() != num_vertices || xyz.size() != 3 * num_vertices || edges.size() % 2 != 0) {
     throw_bad_input("", 0, "solve_uniform_laplacian: size mismatch (fixed mask, positions or edge list)");
   }
@@ -125,27 +157,55 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
   }
   timings.assembly = seconds_since(start);
 
-  start = Clock::now();
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
-  solver.analyzePattern(matrix);
-  solver.factorize(matrix);
-  if (solver.info() != Eigen::Success) {
-    throw Error(ErrorKind::Failed, "", 0,
-                "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex");
-  }
-  // SPD check: LDLᵀ of an SPD matrix has a strictly positive D; a free component without any fixed
-  // vertex makes D hit (numerically) zero.
-  const auto d = solver.vectorD();
-  for (Eigen::Index i = 0; i < d.size(); ++i) {
-    if (!(d[i] > 1e-12)) {
-      throw Error(ErrorKind::Failed, "", 0,
-                  "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex");
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  const char* singular = "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex";
+  Eigen::MatrixX3d solution;
+  // SPD check: every pivot must be clearly positive (a free component without a fixed vertex makes
+  // the Laplacian singular: a pivot ~0, or a failed factorisation).
+  constexpr double kMinPivot = 1e-12;
+  if (factorization == SparseFactorization::LLT) {
+    Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
+    start = Clock::now();
+    solver.analyzePattern(matrix);
+    solver.factorize(matrix);
+    bool ok = solver.info() == Eigen::Success;
+    if (ok) {
+      const Matrix& l = solver.matrixL();
+      // Column-major L: the first stored entry of each column is its diagonal.
+      for (Eigen::Index c = 0; ok && c < l.outerSize(); ++c) {
+        const double diagonal = l.valuePtr()[l.outerIndexPtr()[c]];
+        ok = diagonal * diagonal > kMinPivot;
+      }
     }
+    if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
+  } else if (factorization == SparseFactorization::ConjugateGradient) {
+    Eigen::ConjugateGradient<Matrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> solver;
+    start = Clock::now();
+    solver.setTolerance(1e-12);
+    solver.setMaxIterations(std::max<Eigen::Index>(1000, 10 * static_cast<Eigen::Index>(num_free)));
+    solver.compute(matrix);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) {
+      throw Error(ErrorKind::Failed, "", 0, "conjugate gradient did not converge (singular Laplacian?)");
+    }
+  } else {
+    Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
+    start = Clock::now();
+    solver.analyzePattern(matrix);
+    solver.factorize(matrix);
+    bool ok = solver.info() == Eigen::Success;
+    const auto d = solver.vectorD();
+    for (Eigen::Index i = 0; ok && i < d.size(); ++i) ok = d[i] > kMinPivot;
+    if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
+    timings.factorization = seconds_since(start);
+    start = Clock::now();
+    solution = solver.solve(rhs);
   }
-  timings.factorization = seconds_since(start);
-
-  start = Clock::now();
-  const Eigen::MatrixX3d solution = solver.solve(rhs);
   for (std::size_t v = 0; v < num_vertices; ++v) {
     const std::int32_t c = column[v];
     if (c == kFixed) continue;
@@ -158,7 +218,6 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
 }
 
 Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tutte3dOptions& options) {
-  (void)options;  // only uniform weights exist
   const std::size_t nv = mesh.num_vertices();
   if (mesh.xyz.size() != 3 * nv || mesh.tets.size() % 4 != 0) {
     throw_bad_input("", 0, "tutte3d: malformed mesh arrays");
@@ -186,7 +245,7 @@ Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tut
   result.num_fixed = map.vids.size();
   result.num_free = nv - result.num_fixed;
 
-  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, fixed, result.xyz);
+  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, fixed, result.xyz, options.factorization);
   result.timings.assembly = solve_timings.assembly;
   result.timings.factorization = solve_timings.factorization;
   result.timings.solve = solve_timings.solve;

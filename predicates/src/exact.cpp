@@ -10,6 +10,8 @@
 // Rationals: point i = (X_i, Y_i, Z_i)/W_i with W_i > 0 (canonical mpq). orient = det[p_i 1] and the
 // lifted predicates are det[p_i |p_i|² 1]; multiplying row i by W_i (or W_i²) > 0 keeps the sign, so
 // every rational predicate is the sign of an integer determinant (Bareiss, fraction-free), no gcd.
+// orient3d on rationals (scalar and batch) first tries a double prefilter with the conversion error
+// folded into the bound (see orient3d_rational_filter).
 #include "exact.hpp"
 
 #include <boost/multiprecision/cpp_int.hpp>
@@ -215,6 +217,35 @@ int insphere_integer(const double* a, const double* b, const double* c, const do
   return integer_sign(Kind::Insphere, p, 5, 3, 5);
 }
 
+// ---- interval-style prefilter for rational orient3d (our derivation, see predicates.md §2 L4) ------
+// Each rational q is replaced once by d = mpq_get_d(q) (truncation): |q − d| < ulp(d) ≤ 2ε|d| when
+// |d| is normal; we require every nonzero |d| in [2^-142, 2^201] (then no product below under- or
+// overflows) and d = 0 only for q = 0. With S = |ã_k| + |d̃_k| per translated entry, the true
+// difference differs from fl(ã − d̃) by ≤ 3εS, |fl(ã − d̃)| ≤ (1+ε)S, so the exact determinant differs
+// from the stage-A evaluation on the doubles by ≤ 9ε·perm(S) (input error) + 7ε·perm(S) (rounding)
+// up to O(ε²) terms; 20ε·fl(perm(S)) bounds both with margin for the rounding of perm(S) itself.
+bool rational_to_safe_double(const Rational& q, double& d) {
+  d = mpq_get_d(q.backend().data());
+  const double ad = std::fabs(d);
+  if (ad == 0.0) return mpq_sgn(q.backend().data()) == 0;
+  return ad >= 0x1p-142 && ad <= 0x1p201;
+}
+
+int orient3d_rational_filter(const double* a, const double* b, const double* c, const double* d) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  const double dx = std::fabs(d[0]), dy = std::fabs(d[1]), dz = std::fabs(d[2]);
+  const double sax = std::fabs(a[0]) + dx, say = std::fabs(a[1]) + dy, saz = std::fabs(a[2]) + dz;
+  const double sbx = std::fabs(b[0]) + dx, sby = std::fabs(b[1]) + dy, sbz = std::fabs(b[2]) + dz;
+  const double scx = std::fabs(c[0]) + dx, scy = std::fabs(c[1]) + dy, scz = std::fabs(c[2]) + dz;
+  const double permanent = (sbx * scy + scx * sby) * saz + (scx * say + sax * scy) * sbz + (sax * sby + sbx * say) * scz;
+  constexpr double kBound = 20.0 * 0x1p-53;
+  const double bound = kBound * permanent;
+  return (det > bound) - (det < -bound);
+}
+
 }  // namespace volmap::detail
 
 namespace volmap {
@@ -232,6 +263,16 @@ int orient2d(const Rational* a, const Rational* b, const Rational* c) {
 }
 int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rational* d) {
   const Rational* p[4] = {a, b, c, d};
+  double approx[4][3];
+  bool safe = true;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) safe &= detail::rational_to_safe_double(p[i][k], approx[i][k]);
+  if (safe) {
+    const int s = detail::orient3d_rational_filter(approx[0], approx[1], approx[2], approx[3]);
+    if (s != 0) return s;
+  }
+  for (int k = 0; k < 3; ++k)  // zero-column shortcut: a whole translated column is zero
+    if (a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) return 0;
   Mpz m[4][4];
   for (int i = 0; i < 4; ++i) {
     Mpz h[4];
@@ -270,15 +311,22 @@ TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const
       r.error = "vertex id out of range";
       return r;
     }
-  // Homogeneous coordinates once per vertex (flat, one allocation), then one 4×4 integer
-  // determinant per tet.
-  std::vector<Mpz> hom(4 * num_vertices);
-  for (std::size_t v = 0; v < num_vertices; ++v) detail::homogenize<3>(xyz + 3 * v, hom.data() + 4 * v);
-  Mpz m[4][4];
+  // Double approximations once per vertex (two allocations, outside the loop); per tet the filter
+  // decides unless a vertex is out of the safe range or the tet is (nearly) degenerate, then the exact
+  // homogeneous integer determinant runs.
+  std::vector<double> approx(3 * num_vertices);
+  std::vector<unsigned char> vertex_safe(num_vertices);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) ok &= detail::rational_to_safe_double(xyz[3 * v + k], approx[3 * v + k]);
+    vertex_safe[v] = ok;
+  }
   for (std::size_t t = 0; t < num_tets; ++t) {
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 4; ++k) m[i][k] = hom[4 * tets[4 * t + i] + k];
-    const int s = detail::bareiss_sign(m);
+    const std::uint32_t* v = tets + 4 * t;
+    int s = 0;
+    if (vertex_safe[v[0]] & vertex_safe[v[1]] & vertex_safe[v[2]] & vertex_safe[v[3]])
+      s = detail::orient3d_rational_filter(&approx[3 * v[0]], &approx[3 * v[1]], &approx[3 * v[2]], &approx[3 * v[3]]);
+    if (s == 0) s = orient3d(xyz + 3 * v[0], xyz + 3 * v[1], xyz + 3 * v[2], xyz + 3 * v[3]);
     if (signs) signs[t] = static_cast<std::int8_t>(s);
     (s > 0 ? r.positive : s < 0 ? r.negative : r.zero) += 1;
   }

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace volmap {
 namespace {
@@ -450,19 +451,24 @@ struct MeshCensus {
 MeshCensus census(const double* xyz, std::size_t num_vertices) {
   MeshCensus c;
   if (num_vertices == 0) return c;
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  bool finite = true, safe = true;
+  // Branch-free reductions. poison = Σ x·0 is 0 for finite x and NaN as soon as one x is ±inf or NaN.
+  // min_abs collects the smallest nonzero magnitude (zeros map to +inf).
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double max_abs = 0.0, min_abs = HUGE_VAL, poison = 0.0;
   for (std::size_t v = 0; v < num_vertices; ++v) {
     for (int k = 0; k < 3; ++k) {
       const double x = xyz[3 * v + k];
-      finite &= std::isfinite(x);
-      safe &= in_safe_range(x);
-      lo[k] = std::min(lo[k], x);
-      hi[k] = std::max(hi[k], x);
+      const double ax = std::fabs(x);
+      poison += x * 0.0;
+      lo[k] = x < lo[k] ? x : lo[k];
+      hi[k] = x > hi[k] ? x : hi[k];
+      max_abs = ax > max_abs ? ax : max_abs;
+      const double nz = ax == 0.0 ? HUGE_VAL : ax;
+      min_abs = nz < min_abs ? nz : min_abs;
     }
   }
-  c.finite = finite;
-  c.safe = safe && finite;
+  c.finite = poison == 0.0;
+  c.safe = c.finite && max_abs <= 0x1p201 && min_abs >= 0x1p-142;
   for (int k = 0; k < 3; ++k) c.extent[k] = hi[k] - lo[k];
   return c;
 }
@@ -499,23 +505,23 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
   for (int k = 0; k < 3; ++k) use_static &= (mesh.extent[k] >= 1e-97 && mesh.extent[k] < 1e102);
   const double static_bound =
       use_static ? kO3Static * mesh.extent[0] * mesh.extent[1] * mesh.extent[2] : HUGE_VAL;
-  // Validate every id first (a vectorisable max over the id array), so the sign loop has no checks.
-  std::uint32_t max_id = 0;
-  for (std::size_t i = 0; i < 4 * num_tets; ++i) max_id = std::max(max_id, tets[i]);
-  if (num_tets > 0 && max_id >= num_vertices) return fail("tet vertex id out of range");
-  // Chunks of kChunk tets: pass 1 is the bare determinant + L1 compare with no call in the loop
-  // (undecided tets are queued in a fixed stack array), pass 2 resolves the queue, pass 3 counts.
+  // Chunks of kChunk tets: pass 1 validates the ids (running max, no pointer is formed from a bad id)
+  // and computes the bare determinant + the L1 compare, with no call in the loop; pass 2 counts
+  // branch-free and resolves the undecided (0) entries through the guarded layers.
   constexpr std::size_t kChunk = 2048;
   std::int8_t chunk_signs[kChunk];
-  std::uint32_t undecided[kChunk];
   std::size_t positive = 0, negative = 0;
   for (std::size_t first = 0; first < num_tets; first += kChunk) {
     const std::size_t count = std::min(kChunk, num_tets - first);
     std::int8_t* out = signs ? signs + first : chunk_signs;
     const std::uint32_t* chunk = tets + 4 * first;
-    std::size_t queued = 0;
+    std::uint32_t max_id = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const std::uint32_t* v = chunk + 4 * t;
+      const std::uint32_t m01 = v[0] > v[1] ? v[0] : v[1], m23 = v[2] > v[3] ? v[2] : v[3];
+      const std::uint32_t m = m01 > m23 ? m01 : m23;
+      max_id = m > max_id ? m : max_id;
+      if (m >= num_vertices) break;  // reported after the loop, before any pointer is formed
       const double* a = xyz + 3 * std::size_t(v[0]);
       const double* b = xyz + 3 * std::size_t(v[1]);
       const double* c = xyz + 3 * std::size_t(v[2]);
@@ -527,22 +533,27 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
           adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
       const int s = (det > static_bound) - (det < -static_bound);
       out[t] = static_cast<std::int8_t>(s);
-      undecided[queued] = static_cast<std::uint32_t>(t);
-      queued += (s == 0);
     }
-    for (std::size_t q = 0; q < queued; ++q) {
-      const std::uint32_t* v = chunk + 4 * std::size_t(undecided[q]);
-      const double* a = xyz + 3 * std::size_t(v[0]);
-      const double* b = xyz + 3 * std::size_t(v[1]);
-      const double* c = xyz + 3 * std::size_t(v[2]);
-      const double* d = xyz + 3 * std::size_t(v[3]);
-      out[undecided[q]] =
-          static_cast<std::int8_t>(mesh.safe ? orient3d_safe_after_static(a, b, c, d) : orient3d(a, b, c, d));
-    }
+    if (max_id >= num_vertices) return fail("tet vertex id out of range");
+    // Branch-free (vectorised) count; only chunks with undecided entries take the resolve loop.
     std::size_t pos = 0, neg = 0;
     for (std::size_t t = 0; t < count; ++t) {
       pos += out[t] > 0;
       neg += out[t] < 0;
+    }
+    if (pos + neg != count) {
+      for (std::size_t t = 0; t < count; ++t) {
+        if (out[t] != 0) continue;
+        const std::uint32_t* v = chunk + 4 * t;
+        const double* a = xyz + 3 * std::size_t(v[0]);
+        const double* b = xyz + 3 * std::size_t(v[1]);
+        const double* c = xyz + 3 * std::size_t(v[2]);
+        const double* d = xyz + 3 * std::size_t(v[3]);
+        const int s = mesh.safe ? orient3d_safe_after_static(a, b, c, d) : orient3d(a, b, c, d);
+        out[t] = static_cast<std::int8_t>(s);
+        pos += s > 0;
+        neg += s < 0;
+      }
     }
     positive += pos;
     negative += neg;

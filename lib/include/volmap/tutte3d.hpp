@@ -21,9 +21,14 @@ namespace volmap {
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh);
 
 enum class TutteWeights { Uniform };
+// Eigen SimplicialLLT / SimplicialLDLT (AMD ordering), or ConjugateGradient (Jacobi preconditioner,
+// relative residual 1e-12; "factorization" time = preconditioner setup) for comparison in bench/.
+// CHOLMOD is not installed on this machine (no SuiteSparse headers), so it is not offered.
+enum class SparseFactorization { LLT, LDLT, ConjugateGradient };
 
 struct Tutte3dOptions {
   TutteWeights weights = TutteWeights::Uniform;
+  SparseFactorization factorization = SparseFactorization::LLT;
 };
 
 // Wall-clock seconds per phase.
@@ -48,7 +53,8 @@ struct Tutte3dResult {
 // Every other vertex is moved to the uniform-Laplacian (Tutte) solution. Throws Error(Failed) when
 // the system is singular (a free component with no fixed vertex), Error(BadInput) on size mismatch.
 Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vector<std::uint32_t>& edges,
-                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz);
+                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz,
+                                       SparseFactorization factorization = SparseFactorization::LLT);
 
 // Tutte 3D map of `mesh` with boundary vertex `map.vids[k]` fixed at `map.xyz[3k..3k+2]`. The map
 // is not validated against the mesh's boundary here (use validate_boundary_map): any vid set is

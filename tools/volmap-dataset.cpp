@@ -1,0 +1,212 @@
+// volmap-dataset — extend the benchmark (VOLMAP paper, Sections 6-7) in one command:
+//   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star]
+//                  [--jobs N] [--quality 1.414] [--max-volume V] [--json]
+// For each surface (.obj .off .stl .ply): tetrahedralize (which checks the surface first), run the
+// tet-mesh checks, compute every domain's boundary map, re-running all domains on the refined mesh
+// until no domain refines any more (so ONE mesh serves all domains, as VOLMAP does), verify every map
+// exactly, then publish <dataset>/<group>/<name>.mesh and <group>_<dom>/<name>_<dom>.txt. Every step
+// is one of the volmap-* tools run as a child process; a surface that fails any step is skipped and
+// the reason goes to <dataset>/<group>_log.txt.
+#include "tool_common.hpp"
+
+#include <volmap/atomic_file.hpp>
+#include <volmap/dataset.hpp>
+#include <volmap/process.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tools_dir() {
+  std::error_code ec;
+  const auto self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string(".") : self.parent_path().string();
+}
+
+std::string first_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) return line.substr(0, 300);
+  return "";
+}
+
+struct SurfaceOutcome {
+  std::string name;
+  bool ok = false;
+  std::string reason;        // why it was skipped
+  int refinement_passes = 0;
+};
+
+// Runs one tool; on failure returns its one-line reason (stderr), on success "".
+std::string run_step(const std::vector<std::string>& argv, const fs::path& work, const std::string& step) {
+  const auto out = work / (step + ".out");
+  const auto err = work / (step + ".err");
+  const auto r = volmap::run_process(argv, 0, out.string(), err.string());
+  if (!r.started) return step + ": " + r.spawn_error;
+  if (r.term_signal) return step + ": crashed (signal " + std::to_string(r.term_signal) + ")";
+  if (r.exit_code != 0) {
+    std::string reason = first_line(err);
+    if (reason.empty()) reason = first_line(out);
+    return step + " failed (exit " + std::to_string(r.exit_code) + ")" + (reason.empty() ? "" : ": " + reason);
+  }
+  return "";
+}
+
+void copy_atomically(const fs::path& from, const fs::path& to) {
+  std::ifstream in(from, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  volmap::write_text_atomically(to.string(), ss.str());
+}
+
+SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset, const std::string& group,
+                               const std::vector<std::string>& domains, const std::string& quality,
+                               const std::string& max_volume) {
+  const fs::path tools(tools_dir());
+  SurfaceOutcome outcome;
+  outcome.name = surface.stem().string();
+  const fs::path work = dataset / (".work_" + group) / outcome.name;
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const fs::path mesh = work / (outcome.name + ".mesh");
+
+  std::vector<std::string> tetgen = {(tools / "volmap-tetrahedralize").string(), surface.string(), mesh.string(),
+                                     "--quality", quality};
+  if (!max_volume.empty()) tetgen.insert(tetgen.end(), {"--max-volume", max_volume});
+  if (auto e = run_step(tetgen, work, "tetrahedralize"); !e.empty()) return outcome.reason = e, outcome;
+  if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check"); !e.empty())
+    return outcome.reason = e, outcome;
+
+  // Fixed point: a pass maps every domain on the current mesh; a domain that had to refine
+  // replaces the mesh, and the pass restarts until one full pass refines nothing.
+  constexpr int kMaxPasses = 6;
+  bool stable = false;
+  for (int pass = 0; pass < kMaxPasses && !stable; ++pass) {
+    outcome.refinement_passes = pass + 1;
+    stable = true;
+    for (const auto& dom : domains) {
+      const fs::path map = work / (outcome.name + "_" + dom + ".txt");
+      const fs::path refined = work / "refined.mesh";
+      fs::remove(refined);
+      if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map.string(), "--refined",
+                             refined.string()},
+                            work, "surface-map-" + dom);
+          !e.empty())
+        return outcome.reason = e, outcome;
+      if (fs::exists(refined)) {
+        fs::rename(refined, mesh);
+        stable = false;
+        break;  // maps computed so far are on the old mesh: start a new pass
+      }
+    }
+  }
+  if (!stable) return outcome.reason = "refinement did not settle in " + std::to_string(kMaxPasses) + " passes", outcome;
+  for (const auto& dom : domains) {
+    const fs::path map = work / (outcome.name + "_" + dom + ".txt");
+    if (auto e = run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map.string(), "--domain", dom},
+                          work, "surface-map-check-" + dom);
+        !e.empty())
+      return outcome.reason = e, outcome;
+  }
+  if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check-final");
+      !e.empty())
+    return outcome.reason = e, outcome;
+
+  fs::create_directories(dataset / group);
+  for (const auto& dom : domains) {
+    fs::create_directories(dataset / (group + "_" + dom));
+    copy_atomically(work / (outcome.name + "_" + dom + ".txt"),
+                    dataset / (group + "_" + dom) / (outcome.name + "_" + dom + ".txt"));
+  }
+  copy_atomically(mesh, dataset / group / (outcome.name + ".mesh"));  // last: a mesh means a complete case
+  fs::remove_all(work);
+  outcome.ok = true;
+  return outcome;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Turn closed genus-0 surfaces into a new VOLMAP group: tet meshes + verified boundary maps.",
+               "volmap-dataset"};
+  std::string surfaces_dir, dataset_dir, group, domains_text = "cube,tet,pyr,octa,star", quality = "1.414", max_volume;
+  int jobs = 1;
+  bool json = false;
+  app.add_option("surfaces_dir", surfaces_dir, "folder of .obj/.off/.stl/.ply surfaces")->required();
+  app.add_option("dataset_dir", dataset_dir, "VOLMAP layout root to write into (created)")->required();
+  app.add_option("--group", group, "group folder name, e.g. G7")->required();
+  app.add_option("--domains", domains_text, "comma-separated domains (cube,tet,pyr,octa,star,sphere)");
+  app.add_option("--jobs,-j", jobs, "surfaces processed in parallel")->check(CLI::Range(1, 64));
+  app.add_option("--quality", quality, "TetGen radius-edge bound (q switch)");
+  app.add_option("--max-volume", max_volume, "TetGen maximum tet volume (a switch)");
+  app.add_flag("--json", json, "print one JSON object");
+  return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    if (group.size() < 2 || group[0] != 'G' || group.find_first_not_of("0123456789", 1) != std::string::npos)
+      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "--group must look like G<number>, got '" + group + "'");
+    std::vector<std::string> domains;
+    {
+      std::stringstream ss(domains_text);
+      for (std::string d; std::getline(ss, d, ',');)
+        if (!d.empty()) {
+          const auto& known = volmap::volmap_domain_suffixes();
+          if (std::find(known.begin(), known.end(), d) == known.end() || d == "pc")
+            throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "unsupported domain '" + d + "'");
+          domains.push_back(d);
+        }
+    }
+    if (!fs::is_directory(surfaces_dir)) throw volmap::Error(volmap::ErrorKind::Io, surfaces_dir, 0, "not a folder");
+    std::vector<fs::path> surfaces;
+    for (const auto& entry : fs::directory_iterator(surfaces_dir)) {
+      std::string ext = entry.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+      if (entry.is_regular_file() && (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply"))
+        surfaces.push_back(entry.path());
+    }
+    std::sort(surfaces.begin(), surfaces.end());
+    if (surfaces.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, surfaces_dir, 0, "no surfaces found");
+    fs::create_directories(dataset_dir);
+
+    std::vector<SurfaceOutcome> outcomes(surfaces.size());
+    std::atomic<std::size_t> next{0};
+    std::mutex print;
+    auto worker = [&] {
+      for (std::size_t i; (i = next++) < surfaces.size();) {
+        outcomes[i] = process_surface(surfaces[i], dataset_dir, group, domains, quality, max_volume);
+        if (!json) {
+          std::lock_guard<std::mutex> lock(print);
+          std::cerr << outcomes[i].name << ": " << (outcomes[i].ok ? "added" : "skipped: " + outcomes[i].reason) << "\n";
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+    for (auto& t : threads) t.join();
+    fs::remove_all(fs::path(dataset_dir) / (".work_" + group));
+
+    std::ostringstream log;
+    std::size_t added = 0;
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& o : outcomes) {
+      added += o.ok;
+      log << o.name << "\t" << (o.ok ? "added" : "skipped") << "\t" << (o.ok ? "" : o.reason) << "\n";
+      list.push_back({{"name", o.name}, {"added", o.ok}, {"reason", o.reason}, {"passes", o.refinement_passes}});
+    }
+    volmap::write_text_atomically((fs::path(dataset_dir) / (group + "_log.txt")).string(), log.str());
+    if (json)
+      std::cout << nlohmann::json{{"ok", true}, {"group", group}, {"added", added}, {"surfaces", list}}.dump() << "\n";
+    else
+      std::cout << group << ": " << added << "/" << surfaces.size() << " surfaces added to " << dataset_dir << " (log "
+                << (fs::path(dataset_dir) / (group + "_log.txt")).string() << ")\n";
+    return added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+  }, &json);
+}

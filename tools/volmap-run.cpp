@@ -1,0 +1,213 @@
+// volmap-run — run a mapping method over a VOLMAP dataset folder, and report on the results.
+//   volmap-run <dataset_dir> --method <tutte3d|map|tlc|executable> [--groups G1,G2] [--domains cube,tet]
+//              [--jobs N] [--timeout s] [--out results_dir] [--resume] [--keep-outputs] [--json]
+//   volmap-run report <results_dir> [--compare other_results_dir] [-o report.html] [--csv summary.csv]
+//   volmap-run list <dataset_dir> [--groups ..] [--domains ..]          (case ids, one per line)
+//   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
+//       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
+// Results: <out>/results.jsonl, one JSON object per case (see lib benchmark_runner.hpp).
+#include "tool_common.hpp"
+
+#include <volmap/atomic_file.hpp>
+#include <volmap/benchmark_report.hpp>
+#include <volmap/benchmark_runner.hpp>
+#include <volmap/dataset.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <memory>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kMaxJobs = 256;
+std::atomic<int> g_child_pids[kMaxJobs];
+
+// On SIGINT/SIGTERM: kill the running candidates' process groups, then leave. Results already
+// appended stay; --resume continues from there.
+extern "C" void on_interrupt(int sig) {
+  for (auto& pid : g_child_pids) {
+    const int p = pid.load();
+    if (p > 0) kill(-p, SIGKILL);
+  }
+  _exit(128 + sig);
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == ',') {
+      if (!cur.empty()) out.push_back(cur);
+      cur.clear();
+    } else if (c != ' ') {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
+std::string tools_dir() {
+  std::error_code ec;
+  const auto self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string(".") : self.parent_path().string();
+}
+
+std::string format_duration(double s) {
+  if (!(s >= 0) || s > 1e7) return "?";
+  char buf[32];
+  const int total = static_cast<int>(s + 0.5);
+  if (total >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", total / 3600, (total / 60) % 60);
+  else std::snprintf(buf, sizeof buf, "%dm%02ds", total / 60, total % 60);
+  return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Run a volume-mapping method over a VOLMAP dataset folder; `report` renders results.", "volmap-run"};
+  std::string dataset, method, groups, domains, out = "volmap-results";
+  int jobs = 1;
+  double timeout = 0;
+  bool resume = false, keep = false, json = false;
+  app.add_option("dataset_dir", dataset, "VOLMAP layout root (G<k>/<name>.mesh, G<k>_<dom>/<name>_<dom>.txt)");
+  app.add_option("--method", method, "tutte3d, map, tlc, or a candidate executable (<exe> in.mesh map.txt out.mesh)");
+  app.add_option("--groups", groups, "comma-separated groups, e.g. G1,G2 (default: all)");
+  app.add_option("--domains", domains, "comma-separated domains among cube,tet,pyr,octa,star,sphere,pc (default: all)");
+  app.add_option("--jobs,-j", jobs, "parallel cases")->check(CLI::Range(1, kMaxJobs));
+  app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(CLI::NonNegativeNumber);
+  app.add_option("--out", out, "results folder (results.jsonl + per-case logs)");
+  app.add_flag("--resume", resume, "skip cases already recorded in the results folder");
+  app.add_flag("--keep-outputs", keep, "keep every written mesh (default: only logs and JSON)");
+  app.add_flag("--json", json, "print one JSON summary object at the end");
+
+  auto* report = app.add_subcommand("report", "write report.html and summary.csv from results folders");
+  std::string results_dir, compare_dir, html_path, csv_path;
+  report->add_option("results_dir", results_dir, "a results folder of volmap-run")->required();
+  report->add_option("--compare", compare_dir, "a second results folder shown side by side");
+  report->add_option("-o,--output", html_path, "HTML report path (default <results_dir>/report.html)");
+  report->add_option("--csv", csv_path, "CSV summary path (default <results_dir>/summary.csv)");
+  auto* list = app.add_subcommand("list", "print the case ids of a dataset folder, one per line");
+  std::string list_dataset;
+  list->add_option("dataset_dir", list_dataset, "VOLMAP layout root")->required();
+  list->add_option("--groups", groups, "comma-separated groups");
+  list->add_option("--domains", domains, "comma-separated domains");
+
+  auto* one = app.add_subcommand("case", "run one case and write its record as a JSON file");
+  std::string case_dataset, case_id;
+  one->add_option("dataset_dir", case_dataset, "VOLMAP layout root")->required();
+  one->add_option("case_id", case_id, "<group>/<name>_<domain>, as printed by `list`")->required();
+  one->add_option("--method", method, "tutte3d, map, tlc, or a candidate executable")->required();
+  one->add_option("--out", out, "results folder");
+  one->add_option("--timeout", timeout, "seconds for the candidate (0 = none)")->check(CLI::NonNegativeNumber);
+  one->add_flag("--keep-outputs", keep, "keep the written meshes");
+  app.require_subcommand(0, 1);
+
+  return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    if (report->parsed()) {
+      std::vector<volmap::MethodRun> runs;
+      for (const auto& dir : {results_dir, compare_dir}) {
+        if (dir.empty()) continue;
+        const auto file = fs::path(dir) / "results.jsonl";
+        if (!fs::is_regular_file(file)) throw volmap::Error(volmap::ErrorKind::Io, file.string(), 0, "no results file");
+        // One run per method found in the folder.
+        std::vector<volmap::MethodRun> found;
+        for (auto& r : volmap::read_results(file.string())) {
+          const std::string label = compare_dir.empty() ? r.method : r.method + " (" + fs::path(dir).filename().string() + ")";
+          auto it = std::find_if(found.begin(), found.end(), [&](const auto& m) { return m.label == label; });
+          if (it == found.end()) it = found.insert(found.end(), volmap::MethodRun{label, {}});
+          it->records.push_back(std::move(r));
+        }
+        runs.insert(runs.end(), found.begin(), found.end());
+      }
+      if (html_path.empty()) html_path = (fs::path(results_dir) / "report.html").string();
+      if (csv_path.empty()) csv_path = (fs::path(results_dir) / "summary.csv").string();
+      volmap::write_text_atomically(html_path, volmap::render_report_html(runs, "volmap benchmark report"));
+      volmap::write_text_atomically(csv_path, volmap::summary_csv(runs));
+      std::cout << "report: " << fs::absolute(html_path).string() << "\nsummary: " << fs::absolute(csv_path).string() << "\n";
+      return volmap_tools::kExitOk;
+    }
+    if (list->parsed()) {
+      for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains)))
+        std::cout << c.id() << "\n";
+      return volmap_tools::kExitOk;
+    }
+    if (one->parsed()) {
+      const auto all = volmap::discover_cases(case_dataset);
+      const auto it = std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.id() == case_id; });
+      if (it == all.end()) throw volmap::Error(volmap::ErrorKind::BadInput, case_dataset, 0, "no case '" + case_id + "'");
+      volmap::RunOptions options;
+      options.out_dir = out;
+      options.tools_dir = tools_dir();
+      options.timeout_s = timeout;
+      options.keep_outputs = keep;
+      std::signal(SIGINT, on_interrupt);
+      std::signal(SIGTERM, on_interrupt);
+      const auto record = volmap::run_case(*it, volmap::resolve_method(method, options.tools_dir), options, &g_child_pids[0]);
+      const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
+      fs::create_directories(path.parent_path());
+      volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
+      std::cout << case_id << ": " << (record.certified ? "certified" : "not certified") << "\n";
+      return volmap_tools::kExitOk;
+    }
+    if (dataset.empty() || method.empty())
+      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "usage: volmap-run <dataset_dir> --method <name|exe> (see --help)");
+
+    const auto cases = volmap::discover_cases(dataset, split_list(groups), split_list(domains));
+    if (cases.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, dataset, 0, "no cases found in the VOLMAP layout");
+    volmap::RunOptions options;
+    options.out_dir = out;
+    options.tools_dir = tools_dir();
+    options.jobs = jobs;
+    options.timeout_s = timeout;
+    options.resume = resume;
+    options.keep_outputs = keep;
+    const auto spec = volmap::resolve_method(method, options.tools_dir);
+
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    const bool tty = isatty(STDERR_FILENO);
+    const auto start = std::chrono::steady_clock::now();
+    std::size_t first_done = SIZE_MAX;
+    auto progress = [&](const volmap::RunProgress& p) {
+      if (first_done == SIZE_MAX) first_done = p.done - 1;
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double per_case = elapsed / double(std::max<std::size_t>(1, p.done - first_done));
+      const double eta = per_case * double(p.total - p.done);
+      if (tty) {
+        const int width = 30;
+        const int filled = p.total ? int(width * double(p.done) / double(p.total)) : width;
+        std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] " << p.done << "/"
+                  << p.total << "  failures " << p.failures << "  ETA " << format_duration(eta) << "  "
+                  << (p.last ? p.last->case_id : "") << "\x1b[K" << std::flush;
+        if (p.done == p.total) std::cerr << "\n";
+      } else if (p.last) {
+        std::cerr << "[" << p.done << "/" << p.total << "] " << p.last->case_id << ": "
+                  << (p.last->certified ? "certified" : "NOT certified") << " (" << p.last->time_s << " s"
+                  << (p.last->failure.empty() ? "" : ", " + p.last->failure) << ")\n";
+      }
+    };
+    const auto records = volmap::run_benchmark(cases, spec, options, progress, g_child_pids);
+    // Totals over everything recorded for this method (including resumed cases).
+    std::size_t total = 0, certified = 0;
+    for (const auto& r : volmap::read_results((fs::path(out) / "results.jsonl").string()))
+      if (r.method == spec.name) {
+        ++total;
+        certified += r.certified;
+      }
+    if (json) {
+      nlohmann::json j{{"ok", true},       {"method", spec.name},        {"cases", cases.size()},
+                       {"ran", records.size()}, {"recorded", total},    {"certified", certified},
+                       {"results", (fs::path(out) / "results.jsonl").string()}};
+      std::cout << j.dump() << "\n";
+    } else {
+      std::cout << spec.name << ": " << certified << "/" << total << " certified; results in "
+                << (fs::path(out) / "results.jsonl").string() << "\n";
+    }
+    return volmap_tools::kExitOk;
+  }, &json);
+}
