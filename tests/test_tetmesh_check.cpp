@@ -4,6 +4,7 @@
 // images are mixed with the README's exact counts; all of them round-trip .mesh -> .vtu -> .mesh
 // bit-exactly; the negative tet mesh fails the right checks.
 #include <doctest/doctest.h>
+#include <volmap/boundary_faces.hpp>
 #include <volmap/error.hpp>
 #include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
@@ -14,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -285,4 +287,43 @@ TEST_CASE("other tet meshes: tetmeshes/ are all coherently opposite; map sources
   // Its boundary crosses itself (confirmed independently with exact rational segment-triangle tests
   // on the first reported pairs), so the self-intersection check fails too.
   CHECK(failed_checks(init) == Keys{"orientation", "self_intersections"});
+}
+
+TEST_CASE("random tet soups (non-manifold, degenerate, duplicated): reported, never thrown") {
+  std::mt19937 rng(2024);
+  std::size_t failing = 0;
+  for (int iter = 0; iter < 300; ++iter) {
+    TetMeshData m;
+    const int nv = 5 + int(rng() % 15);
+    for (int v = 0; v < nv; ++v) add_vertex(m, double(rng() % 3), double(rng() % 3), double(rng() % 3));
+    const int nt = 1 + int(rng() % 25);
+    for (int t = 0; t < nt; ++t) {
+      for (int k = 0; k < 4; ++k) m.tets.push_back(std::uint32_t(rng() % nv));
+      m.tet_labels.push_back(0);
+    }
+    volmap::TetMeshCheckReport r;
+    REQUIRE_NOTHROW(r = check_tet_mesh(m));
+    CHECK(r.checks.size() == 7);
+    CHECK(r.signs.positive + r.signs.negative + r.signs.zero == m.num_tets());
+    // The driver's pair count equals brute force over the boundary triangles.
+    const auto& hfs = r.topology.boundary_half_faces;
+    std::vector<std::uint32_t> tris;
+    for (std::uint32_t hf : hfs)
+      for (int k = 0; k < 3; ++k) tris.push_back(m.tets[4 * (hf / 4) + volmap::kTetFaceLocal[hf % 4][k]]);
+    std::size_t brute = 0;
+    const std::size_t n = hfs.size();
+    std::vector<char> degenerate(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t* t = &tris[3 * i];
+      degenerate[i] = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+                      volmap::triangle_is_degenerate(&m.xyz[3 * t[0]], &m.xyz[3 * t[1]], &m.xyz[3 * t[2]]);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (!degenerate[i] && !degenerate[j] && volmap::triangle_pair_intersects(m.xyz.data(), &tris[3 * i], &tris[3 * j]))
+          ++brute;
+    CHECK(r.self_intersections.intersecting_pairs == brute);
+    failing += !r.all_passed();
+  }
+  CHECK(failing > 250);  // random soups are almost never valid meshes
 }

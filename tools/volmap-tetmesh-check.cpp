@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
   app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu) or surface (.off, .obj, .stl, .ply)")->required();
   app.add_option("--fix", fix_output,
                  "write the mesh flipped to the VOLMAP convention (v0<->v1 in every tet) when it is coherently "
-                 "opposite; refused (exit 1) when orientation is mixed");
+                 "opposite (a mesh already positive is written unchanged); refused (exit 1, nothing written) when "
+                 "orientation is mixed; the exit code is then the written mesh's verdict");
   app.add_flag("--json", json, "print one JSON object");
   std::string log_csv;
   app.add_option("--log", log_csv,
@@ -156,7 +157,7 @@ int main(int argc, char** argv) {
         if (!json) {
           std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
           print_checks(report.checks);
-          std::printf("%s\n", ok ? "all checks PASSED" : "checks FAILED");
+          std::printf("%s%s\n", fix_output.empty() ? "" : "input: ", ok ? "all checks PASSED" : "checks FAILED");
         }
 
         if (!log_csv.empty()) {
