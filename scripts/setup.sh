@@ -13,7 +13,9 @@ JOBS=${VOLMAP_JOBS:-$(nproc)}
 
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libboost-dev libgmp-dev libopenmesh-dev
           libtet1.5-dev doctest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev liblbfgspp-dev
-          libtbb-dev libcgal-dev python3-meshio chromium fonts-liberation)
+          libtbb-dev libcgal-dev python3-meshio chromium fonts-liberation snakemake clang libclang-rt-14-dev)
+# Node.js + npm for the viewer bundle: the machine's own when present, else Debian's.
+command -v npm >/dev/null || PACKAGES+=(nodejs npm)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
