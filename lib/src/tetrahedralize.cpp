@@ -1,0 +1,223 @@
+// TetGen tetrahedralisation of a closed surface read with OpenMesh (see tetrahedralize.hpp).
+// TetGen is called through its library interface (TETLIBRARY: errors are thrown as ints, decoded
+// below); its stdout chatter is silenced with "Q" and, for error messages printed before the throw,
+// by redirecting file descriptor 1 during the call so `--json` tools stay clean.
+#include <volmap/error.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/surface_map_check.hpp>
+#include <volmap/tetrahedralize.hpp>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <tetgen.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+namespace volmap {
+namespace {
+
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+
+std::string tetgen_reason(int code) {
+  switch (code) {
+    case 1: return "TetGen ran out of memory";
+    case 2: return "TetGen internal error";
+    case 3: return "TetGen detected a self-intersection of the surface";
+    case 4: return "TetGen detected a very small input feature (tolerance)";
+    case 5: return "TetGen detected two very close input facets";
+    case 10: return "TetGen detected an input error";
+    default: return "TetGen failed with code " + std::to_string(code);
+  }
+}
+
+// Silences stdout (fd 1) for its lifetime.
+class QuietStdout {
+ public:
+  QuietStdout() {
+    std::fflush(stdout);
+    saved_ = dup(1);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, 1);
+    if (null_fd >= 0) close(null_fd);
+  }
+  ~QuietStdout() {
+    std::fflush(stdout);
+    if (saved_ >= 0) {
+      dup2(saved_, 1);
+      close(saved_);
+    }
+  }
+
+ private:
+  int saved_ = -1;
+};
+
+}  // namespace
+
+TriangleSurface read_triangle_surface(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw_io(path, "cannot open surface file");
+  PolyMesh mesh;
+  OpenMesh::IO::Options opt;
+  // OpenMesh reports faces it cannot add (complex edges/vertices) on its error stream; capture them.
+  std::ostringstream captured;
+  omerr().connect(captured);
+  omlog().disable();
+  const bool ok = OpenMesh::IO::read_mesh(mesh, path, opt);
+  omerr().disconnect(captured);
+  if (!ok) throw Error(ErrorKind::BadInput, path, 0, "OpenMesh cannot read this surface (unknown format or malformed)");
+  if (captured.str().find("complex") != std::string::npos)
+    throw Error(ErrorKind::BadInput, path, 0, "the surface is not manifold (OpenMesh rejected faces: complex edge/vertex)");
+  TriangleSurface s;
+  s.xyz.reserve(3 * mesh.n_vertices());
+  for (auto vh : mesh.vertices()) {
+    const auto p = mesh.point(vh);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(p[k])) throw Error(ErrorKind::BadInput, path, 0, "non-finite vertex coordinate");
+      s.xyz.push_back(p[k]);
+    }
+  }
+  for (auto fh : mesh.faces()) {
+    std::vector<std::uint32_t> poly;
+    for (auto vh : mesh.fv_range(fh)) poly.push_back(static_cast<std::uint32_t>(vh.idx()));
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i) s.tris.insert(s.tris.end(), {poly[0], poly[i], poly[i + 1]});
+  }
+  if (s.tris.empty()) throw Error(ErrorKind::BadInput, path, 0, "the surface has no faces");
+  return s;
+}
+
+std::string surface_topology_problem(const TriangleSurface& s) {
+  const std::size_t nv = s.num_vertices(), nt = s.num_triangles();
+  // Directed edges: each undirected edge must appear exactly once in each direction (closed,
+  // edge-manifold, consistently oriented).
+  std::vector<std::uint64_t> directed;
+  directed.reserve(3 * nt);
+  std::vector<std::uint32_t> valence(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = s.tris[3 * t + k], b = s.tris[3 * t + (k + 1) % 3];
+      if (a >= nv || b >= nv) return "a triangle references a missing vertex";
+      if (a == b) return "a triangle has a repeated vertex";
+      directed.push_back((static_cast<std::uint64_t>(a) << 32) | b);
+      ++valence[a];
+    }
+  std::sort(directed.begin(), directed.end());
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end())
+    return "the surface is not manifold or not consistently oriented (an edge is used twice in the same direction)";
+  for (auto e : directed) {
+    const std::uint64_t rev = ((e & 0xffffffffu) << 32) | (e >> 32);
+    if (!std::binary_search(directed.begin(), directed.end(), rev))
+      return "the surface is not closed (it has border edges)";
+  }
+  // Vertex manifoldness: the triangles around every vertex form one fan (one cycle).
+  std::vector<std::uint32_t> offset(nv + 1, 0);
+  for (auto v : valence) (void)v;
+  for (std::size_t v = 0; v < nv; ++v) offset[v + 1] = offset[v] + valence[v];
+  std::vector<std::uint32_t> next_of(offset[nv]), from_of(offset[nv]);
+  std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = s.tris[3 * t + k];
+      from_of[fill[v]] = s.tris[3 * t + (k + 1) % 3];
+      next_of[fill[v]++] = s.tris[3 * t + (k + 2) % 3];
+    }
+  std::size_t used_vertices = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::uint32_t b = offset[v], e = offset[v + 1];
+    if (b == e) continue;
+    ++used_vertices;
+    std::uint32_t x = from_of[b];
+    std::uint32_t steps = 0;
+    do {
+      std::uint32_t k = b;
+      while (k < e && from_of[k] != x) ++k;
+      if (k == e) return "the surface is not manifold at vertex " + std::to_string(v);
+      x = next_of[k];
+      ++steps;
+    } while (x != from_of[b] && steps <= e - b);
+    if (steps != e - b) return "the surface is not manifold at vertex " + std::to_string(v) + " (pinched)";
+  }
+  // Components (union-find over triangle vertices).
+  std::vector<std::uint32_t> parent(nv);
+  for (std::uint32_t v = 0; v < nv; ++v) parent[v] = v;
+  auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 1; k < 3; ++k) parent[find(s.tris[3 * t + k])] = find(s.tris[3 * t]);
+  std::size_t components = 0;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (offset[v + 1] > offset[v] && find(v) == v) ++components;
+  if (components != 1) return "the surface has " + std::to_string(components) + " connected components (expected 1)";
+  const long long chi = static_cast<long long>(used_vertices) - static_cast<long long>(directed.size() / 2) +
+                        static_cast<long long>(nt);
+  if (chi != 2) return "the surface has genus " + std::to_string((2 - chi) / 2) + " (expected a genus-0 sphere)";
+  return "";
+}
+
+TetMeshData tetrahedralize_surface(const TriangleSurface& s, const TetrahedralizeOptions& options) {
+  const std::string problem = surface_topology_problem(s);
+  if (!problem.empty()) throw Error(ErrorKind::BadInput, "", 0, problem);
+  if (!(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "", 0, "quality bound must be >= 1");
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(s.num_vertices());
+  in.pointlist = new REAL[s.xyz.size()];
+  std::copy(s.xyz.begin(), s.xyz.end(), in.pointlist);
+  in.numberoffacets = static_cast<int>(s.num_triangles());
+  in.facetlist = new tetgenio::facet[in.numberoffacets];
+  for (int f = 0; f < in.numberoffacets; ++f) {
+    tetgenio::facet& facet = in.facetlist[f];
+    tetgenio::init(&facet);
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&facet.polygonlist[0]);
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist = new int[3];
+    for (int k = 0; k < 3; ++k) facet.polygonlist[0].vertexlist[k] = static_cast<int>(s.tris[3 * f + k]);
+  }
+  std::ostringstream sw;
+  sw.precision(17);
+  sw << "pq" << options.quality << "YQz";
+  if (options.max_volume > 0) sw << "a" << options.max_volume;
+  std::string switches = sw.str();
+  try {
+    QuietStdout quiet;
+    tetrahedralize(&switches[0], &in, &out);
+  } catch (int code) {
+    throw Error(ErrorKind::Failed, "", 0, tetgen_reason(code));
+  }
+  if (out.numberoftetrahedra <= 0 || out.numberofcorners != 4)
+    throw Error(ErrorKind::Failed, "", 0, "TetGen produced no tetrahedra");
+  TetMeshData m;
+  m.xyz.assign(out.pointlist, out.pointlist + 3 * out.numberofpoints);
+  m.vertex_labels.assign(out.numberofpoints, 0);
+  m.tets.resize(4 * static_cast<std::size_t>(out.numberoftetrahedra));
+  m.tet_labels.assign(out.numberoftetrahedra, 0);
+  std::size_t flipped = 0;
+  for (int t = 0; t < out.numberoftetrahedra; ++t) {
+    std::uint32_t* q = &m.tets[4 * static_cast<std::size_t>(t)];
+    for (int k = 0; k < 4; ++k) {
+      const int id = out.tetrahedronlist[4 * t + k] - out.firstnumber;
+      if (id < 0 || id >= out.numberofpoints) throw Error(ErrorKind::Failed, "", 0, "TetGen returned a bad vertex id");
+      q[k] = static_cast<std::uint32_t>(id);
+    }
+    const int sgn = orient3d_filtered(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
+    if (sgn == 0) throw Error(ErrorKind::Failed, "", 0, "TetGen produced a degenerate tet " + std::to_string(t));
+    if (sgn < 0) {
+      std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive
+      ++flipped;
+    }
+  }
+  (void)flipped;
+  return m;
+}
+
+}  // namespace volmap
