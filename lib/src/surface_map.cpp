@@ -589,7 +589,11 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     if (!(n > 0)) fail("a map point coincides with the sphere centre");
     for (int k = 0; k < 3; ++k) out.map.xyz[3 * i + k] = centre[k] + radius * (d[k] / n);
   }
-  out.check = check_surface_map(out.mesh, out.map, nullptr);
+  SurfaceMapCheckOptions opt;
+  opt.override_kernel = true;
+  opt.kernel = centre;
+  opt.sphere_radius = radius;
+  out.check = check_surface_map(out.mesh, out.map, nullptr, opt);
   if (!out.check.ok) fail("the projected sphere map fails the exact check: " + out.check.reason);
   return out;
 }

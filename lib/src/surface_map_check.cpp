@@ -97,7 +97,9 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
     }
 
   // Kernel point.
-  if (domain && domain->kind == DomainKind::Custom) {
+  if (options.override_kernel) {
+    r.kernel = options.kernel;
+  } else if (domain && domain->kind == DomainKind::Custom) {
     r.kernel = domain->kernel;
   } else {
     CompensatedSum s[3];
@@ -123,7 +125,20 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
                " degenerate with respect to the kernel point";
   }
 
-  if (domain) {
+  if (options.sphere_radius > 0) {
+    r.domain_checked = true;
+    r.tolerance = options.position_tolerance > 0 ? options.position_tolerance : 1e-9 * 2 * options.sphere_radius;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (map.xyz[3 * i + k] - options.kernel[k]) * (map.xyz[3 * i + k] - options.kernel[k]);
+      const double dist = std::fabs(std::sqrt(d2) - options.sphere_radius);
+      r.max_domain_distance = std::max(r.max_domain_distance, dist);
+      if (dist > r.tolerance) ++r.off_domain;
+    }
+    if (cones_ok && r.off_domain)
+      r.reason = std::to_string(r.off_domain) + " image points off the sphere (max distance " +
+                 std::to_string(r.max_domain_distance) + ")";
+  } else if (domain) {
     r.domain_checked = true;
     double tol = options.position_tolerance;
     if (!(tol > 0)) {

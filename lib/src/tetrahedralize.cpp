@@ -1,7 +1,6 @@
 // TetGen tetrahedralisation of a closed surface read with OpenMesh (see tetrahedralize.hpp).
 // TetGen is called through its library interface (TETLIBRARY: errors are thrown as ints, decoded
-// below); its stdout chatter is silenced with "Q" and, for error messages printed before the throw,
-// by redirecting file descriptor 1 during the call so `--json` tools stay clean.
+// below) in a forked child with stdout on /dev/null (see tetrahedralize_surface for why).
 #include <volmap/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface_map_check.hpp>
@@ -12,17 +11,26 @@
 #include <tetgen.h>
 
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <vector>
 
 namespace volmap {
 namespace {
 
-using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+// Double-precision points (OpenMesh's default is float, which would move the input vertices).
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  typedef OpenMesh::Vec3d Point;
+  typedef OpenMesh::Vec3d Normal;
+};
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
 std::string tetgen_reason(int code) {
   switch (code) {
@@ -36,28 +44,6 @@ std::string tetgen_reason(int code) {
   }
 }
 
-// Silences stdout (fd 1) for its lifetime.
-class QuietStdout {
- public:
-  QuietStdout() {
-    std::fflush(stdout);
-    saved_ = dup(1);
-    const int null_fd = open("/dev/null", O_WRONLY);
-    if (saved_ >= 0 && null_fd >= 0) dup2(null_fd, 1);
-    if (null_fd >= 0) close(null_fd);
-  }
-  ~QuietStdout() {
-    std::fflush(stdout);
-    if (saved_ >= 0) {
-      dup2(saved_, 1);
-      close(saved_);
-    }
-  }
-
- private:
-  int saved_ = -1;
-};
-
 }  // namespace
 
 TriangleSurface read_triangle_surface(const std::string& path) {
@@ -67,14 +53,17 @@ TriangleSurface read_triangle_surface(const std::string& path) {
   OpenMesh::IO::Options opt;
   // OpenMesh reports faces it cannot add (complex edges/vertices) on its error stream; capture them.
   std::ostringstream captured;
+  omerr().disconnect(std::cerr);
   omerr().connect(captured);
   omlog().disable();
   const bool ok = OpenMesh::IO::read_mesh(mesh, path, opt);
   omerr().disconnect(captured);
+  omerr().connect(std::cerr);
   if (!ok) throw Error(ErrorKind::BadInput, path, 0, "OpenMesh cannot read this surface (unknown format or malformed)");
-  if (captured.str().find("complex") != std::string::npos)
-    throw Error(ErrorKind::BadInput, path, 0, "the surface is not manifold (OpenMesh rejected faces: complex edge/vertex)");
   TriangleSurface s;
+  for (std::size_t pos = captured.str().find("complex"); pos != std::string::npos;
+       pos = captured.str().find("complex", pos + 1))
+    ++s.rejected_faces;
   s.xyz.reserve(3 * mesh.n_vertices());
   for (auto vh : mesh.vertices()) {
     const auto p = mesh.point(vh);
@@ -94,6 +83,9 @@ TriangleSurface read_triangle_surface(const std::string& path) {
 
 std::string surface_topology_problem(const TriangleSurface& s) {
   const std::size_t nv = s.num_vertices(), nt = s.num_triangles();
+  if (s.rejected_faces)
+    return "the surface is not manifold (" + std::to_string(s.rejected_faces) +
+           " faces have a complex edge or vertex and could not be added)";
   // Directed edges: each undirected edge must appear exactly once in each direction (closed,
   // edge-manifold, consistently oriented).
   std::vector<std::uint64_t> directed;
@@ -188,25 +180,96 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   sw << "pq" << options.quality << "YQz";
   if (options.max_volume > 0) sw << "a" << options.max_volume;
   std::string switches = sw.str();
-  try {
-    QuietStdout quiet;
-    tetrahedralize(&switches[0], &in, &out);
-  } catch (int code) {
-    throw Error(ErrorKind::Failed, "", 0, tetgen_reason(code));
+  // TetGen runs in a child process: Debian's libtet frees its pools twice when it throws an error
+  // (terminatetetgen() frees, then the unwinding destructor frees again), which crashes the whole
+  // process on bad input (typically self-intersecting surfaces). The child sends the result through a
+  // pipe; a crash or an error code becomes Error(Failed) here.
+  int fds[2];
+  if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "", 0, "cannot create a pipe for TetGen");
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    throw Error(ErrorKind::Failed, "", 0, "cannot fork for TetGen");
   }
-  if (out.numberoftetrahedra <= 0 || out.numberofcorners != 4)
-    throw Error(ErrorKind::Failed, "", 0, "TetGen produced no tetrahedra");
+  if (pid == 0) {
+    close(fds[0]);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) dup2(null_fd, 1), dup2(null_fd, 2);
+    auto write_all = [&](const void* data, std::size_t bytes) {
+      const char* p = static_cast<const char*>(data);
+      while (bytes > 0) {
+        const ssize_t w = write(fds[1], p, bytes);
+        if (w <= 0) _exit(99);
+        p += w;
+        bytes -= static_cast<std::size_t>(w);
+      }
+    };
+    std::int64_t header[3] = {0, 0, 0};
+    try {
+      tetrahedralize(&switches[0], &in, &out);
+    } catch (int code) {
+      header[0] = code;
+      write_all(header, sizeof header);
+      _exit(3);
+    } catch (...) {
+      header[0] = 2;
+      write_all(header, sizeof header);
+      _exit(3);
+    }
+    header[1] = out.numberofpoints;
+    header[2] = out.numberofcorners == 4 ? out.numberoftetrahedra : 0;
+    write_all(header, sizeof header);
+    write_all(out.pointlist, sizeof(REAL) * 3 * static_cast<std::size_t>(header[1]));
+    for (std::int64_t i = 0; i < 4 * header[2]; ++i) {
+      const std::int32_t id = out.tetrahedronlist[i] - out.firstnumber;
+      write_all(&id, sizeof id);
+    }
+    _exit(0);
+  }
+  close(fds[1]);
+  std::vector<char> bytes;
+  {
+    char buffer[1 << 16];
+    for (;;) {
+      const ssize_t r = read(fds[0], buffer, sizeof buffer);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) break;
+      bytes.insert(bytes.end(), buffer, buffer + r);
+    }
+    close(fds[0]);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::int64_t header[3] = {-1, 0, 0};
+  if (bytes.size() >= sizeof header) std::memcpy(header, bytes.data(), sizeof header);
+  if (header[0] > 0) throw Error(ErrorKind::Failed, "", 0, tetgen_reason(static_cast<int>(header[0])));
+  if (WIFSIGNALED(status) || header[0] < 0)
+    throw Error(ErrorKind::Failed, "", 0,
+                "TetGen crashed on this surface (libtet aborts while cleaning up after an error; the usual "
+                "cause is a self-intersecting surface)");
+  const std::size_t np = static_cast<std::size_t>(header[1]), ntet = static_cast<std::size_t>(header[2]);
+  if (ntet == 0) throw Error(ErrorKind::Failed, "", 0, "TetGen produced no tetrahedra");
+  if (bytes.size() != sizeof header + 24 * np + 16 * ntet)
+    throw Error(ErrorKind::Failed, "", 0, "TetGen's output was truncated");
   TetMeshData m;
-  m.xyz.assign(out.pointlist, out.pointlist + 3 * out.numberofpoints);
-  m.vertex_labels.assign(out.numberofpoints, 0);
-  m.tets.resize(4 * static_cast<std::size_t>(out.numberoftetrahedra));
-  m.tet_labels.assign(out.numberoftetrahedra, 0);
+  m.xyz.resize(3 * np);
+  std::memcpy(m.xyz.data(), bytes.data() + sizeof header, 24 * np);
+  m.vertex_labels.assign(np, 0);
+  m.tets.resize(4 * ntet);
+  m.tet_labels.assign(ntet, 0);
+  const char* ids = bytes.data() + sizeof header + 24 * np;
   std::size_t flipped = 0;
-  for (int t = 0; t < out.numberoftetrahedra; ++t) {
-    std::uint32_t* q = &m.tets[4 * static_cast<std::size_t>(t)];
+  for (std::size_t t = 0; t < ntet; ++t) {
+    std::uint32_t* q = &m.tets[4 * t];
     for (int k = 0; k < 4; ++k) {
-      const int id = out.tetrahedronlist[4 * t + k] - out.firstnumber;
-      if (id < 0 || id >= out.numberofpoints) throw Error(ErrorKind::Failed, "", 0, "TetGen returned a bad vertex id");
+      std::int32_t id;
+      std::memcpy(&id, ids + 4 * (4 * t + k), 4);
+      if (id < 0 || static_cast<std::size_t>(id) >= np)
+        throw Error(ErrorKind::Failed, "", 0, "TetGen returned a bad vertex id");
       q[k] = static_cast<std::uint32_t>(id);
     }
     const int sgn = orient3d_filtered(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
@@ -216,7 +279,7 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
       ++flipped;
     }
   }
-  (void)flipped;
+  (void)flipped;  // TetGen's tets are all negative in the VOLMAP convention: every one is flipped
   return m;
 }
 

@@ -25,6 +25,12 @@ struct SurfaceMapCheckOptions {
   double position_tolerance = 0;
   // Accept an all-negative map as well (the reference's behaviour, quirk 12); default: positive only.
   bool accept_either_sign = false;
+  // Use `kernel` instead of the centroid / the custom domain's kernel (sphere maps: the centre).
+  bool override_kernel = false;
+  Point3 kernel{};
+  // Sphere domain: when sphere_radius > 0, points must lie on the sphere (kernel = centre) within
+  // the tolerance instead of on a polyhedral domain.
+  double sphere_radius = 0;
 };
 
 struct SurfaceMapCheckResult {
