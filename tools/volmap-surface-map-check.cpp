@@ -5,6 +5,7 @@
 
 #include <volmap/domain.hpp>
 #include <volmap/io.hpp>
+#include <volmap/surface_map.hpp>
 #include <volmap/surface_map_check.hpp>
 
 #include <chrono>
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
   double tolerance = 0;
   app.add_option("mesh", mesh_path, "input tet mesh (Medit .mesh)")->required();
   app.add_option("map", map_path, "boundary map: one 'vid x y z' line per boundary vertex")->required();
-  app.add_option("--domain", domain_arg, "cube|tet|pyr|octa|star or a custom domain file: also check that "
+  app.add_option("--domain", domain_arg, "cube|tet|pyr|octa|star|sphere or a custom domain file: also check that "
                                          "points lie on the domain and corners hit their targets exactly");
   app.add_option("--tolerance", tolerance, "max distance from the domain boundary (default: 1e-9 x domain "
                                            "size, 1e-6 for maps written with 6 decimals)");
@@ -29,12 +30,18 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
     std::optional<volmap::Domain> domain;
-    if (!domain_arg.empty()) domain = volmap::domain_from_name_or_file(domain_arg);
+    const bool sphere = domain_arg == "sphere" || domain_arg == "SPHERE";
+    if (!domain_arg.empty() && !sphere) domain = volmap::domain_from_name_or_file(domain_arg);
     const volmap::TetMeshData mesh = volmap::read_medit(mesh_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::SurfaceMapCheckOptions opt;
     opt.position_tolerance = tolerance;
     opt.accept_either_sign = either_sign;
+    if (sphere) {  // the sphere of volmap-surface-map: centre (50,50,50) is the kernel, radius 50
+      opt.override_kernel = true;
+      opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+      opt.sphere_radius = volmap::kSphereRadius;
+    }
     const auto r = volmap::check_surface_map(mesh, map, domain ? &*domain : nullptr, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (json) {
@@ -52,7 +59,7 @@ int main(int argc, char** argv) {
                        {"kernel", {r.kernel[0], r.kernel[1], r.kernel[2]}},
                        {"seconds", seconds}};
       if (r.domain_checked) {
-        j["domain"] = domain->name;
+        j["domain"] = sphere ? std::string("sphere") : domain->name;
         j["off_domain"] = r.off_domain;
         j["max_domain_distance"] = r.max_domain_distance;
         j["tolerance"] = r.tolerance;
@@ -66,7 +73,7 @@ int main(int argc, char** argv) {
                 << r.map_entries << " entries\n";
       std::cout << "cones: " << r.positive << " positive, " << r.zero << " zero, " << r.negative << " negative\n";
       if (r.domain_checked)
-        std::cout << "domain " << domain->name << ": " << r.off_domain << " points off (max distance "
+        std::cout << "domain " << (sphere ? std::string("sphere") : domain->name) << ": " << r.off_domain << " points off (max distance "
                   << r.max_domain_distance << ", tolerance " << r.tolerance << "), corners exact "
                   << r.corners_exact << "/" << r.corners_expected << "\n";
       std::cout << (r.ok ? "Check result: SUCCESS" : "Check result: FAIL (" + r.reason + ")") << "\n";
