@@ -81,6 +81,8 @@ class Tokenizer {
     if (pos_ != end_) ++pos_, ++line_;
   }
   std::size_t line() const { return line_; }
+  // Counts one more line (for callers that consumed header lines themselves).
+  void count_line() { ++line_; }
   // Line of the last token returned by next() (1 before any): where truncation errors point.
   std::size_t last_line() const { return last_line_; }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - pos_); }

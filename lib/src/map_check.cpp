@@ -1,0 +1,271 @@
+// map_check.cpp — exact volume-map certification (volmap-reference.md §6, mapping.md §1).
+// Signs come from the batch predicate volmap::orient3d_tets, split into chunks over TBB workers.
+// Output positions are always evaluated with the INPUT tet's vertex ids (input per-tet order).
+#include <volmap/error.hpp>
+#include <volmap/map_check.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <array>
+#include <atomic>
+#include <cstring>
+#include <string>
+
+namespace volmap {
+namespace {
+
+using Quad = std::array<std::uint32_t, 4>;
+
+Quad sorted_quad(const std::uint32_t* tet) {
+  Quad q{tet[0], tet[1], tet[2], tet[3]};
+  // 5-comparator sorting network for 4 elements.
+  if (q[0] > q[1]) std::swap(q[0], q[1]);
+  if (q[2] > q[3]) std::swap(q[2], q[3]);
+  if (q[0] > q[2]) std::swap(q[0], q[2]);
+  if (q[1] > q[3]) std::swap(q[1], q[3]);
+  if (q[1] > q[2]) std::swap(q[1], q[2]);
+  return q;
+}
+
+std::string quad_text(const std::uint32_t* tet) {
+  // 1-based, as in the .mesh files.
+  return "(" + std::to_string(tet[0] + 1) + " " + std::to_string(tet[1] + 1) + " " + std::to_string(tet[2] + 1) +
+         " " + std::to_string(tet[3] + 1) + ")";
+}
+
+// Batch exact orientation of `num_tets` tets over `xyz`, in parallel chunks.
+template <class Coordinate>
+TetSignCounts batch_signs(const Coordinate* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                          std::size_t num_tets, std::int8_t* signs, bool parallel, const char* what) {
+  constexpr std::size_t kChunk = std::is_same<Coordinate, double>::value ? 32768 : 1024;
+  const std::size_t num_chunks = (num_tets + kChunk - 1) / kChunk;
+  if (!parallel || num_chunks <= 1) {
+    TetSignCounts counts = orient3d_tets(xyz, num_vertices, tets, num_tets, signs);
+    if (!counts.ok) throw_bad_input("", 0, std::string(what) + ": " + counts.error);
+    return counts;
+  }
+  std::atomic<std::size_t> positive{0}, zero{0}, negative{0};
+  std::atomic<bool> ok{true};
+  std::atomic<const char*> error{""};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const std::size_t begin = c * kChunk;
+      const std::size_t count = std::min(kChunk, num_tets - begin);
+      const TetSignCounts part = orient3d_tets(xyz, num_vertices, tets + 4 * begin, count, signs ? signs + begin : nullptr);
+      if (!part.ok) {
+        ok = false;
+        error = part.error;
+        continue;
+      }
+      positive += part.positive;
+      zero += part.zero;
+      negative += part.negative;
+    }
+  });
+  if (!ok) throw_bad_input("", 0, std::string(what) + ": " + error.load());
+  TetSignCounts counts;
+  counts.positive = positive;
+  counts.zero = zero;
+  counts.negative = negative;
+  return counts;
+}
+
+void check_mesh_arrays(const TetMeshData& mesh, const char* what) {
+  if (mesh.xyz.size() % 3 != 0 || mesh.tets.size() % 4 != 0) {
+    throw_bad_input("", 0, std::string(what) + ": malformed mesh arrays");
+  }
+}
+
+// Shared core: signs already computed for the input and output (input order); produces the report.
+template <class Coordinate>
+MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const TetMeshData& out,
+                          const Coordinate* out_xyz, const MapCheckOptions& options) {
+  check_mesh_arrays(in, "input mesh");
+  check_mesh_arrays(out, "output mesh");
+  const ConnectivityPairing pairing = match_connectivity(in, out);
+  const std::size_t nt = in.num_tets();
+  const std::size_t nv = in.num_vertices();
+
+  MapCheckReport report;
+  report.num_tets = nt;
+  report.connectivity = pairing.match;
+  std::vector<std::int8_t> sign_in(nt), sign_out(nt);
+  report.input = batch_signs(in_xyz, nv, in.tets.data(), nt, sign_in.data(), options.parallel, "input mesh");
+  report.output = batch_signs(out_xyz, nv, in.tets.data(), nt, sign_out.data(), options.parallel, "output mesh");
+
+  // Absolute mode: the output in its own per-tet vertex order.
+  std::vector<std::int8_t> sign_own;
+  if (options.absolute) {
+    if (pairing.match == ConnectivityMatch::Identical) {
+      report.output_own_order = report.output;
+    } else {
+      sign_own.resize(nt);
+      report.output_own_order =
+          batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
+    }
+  }
+
+  for (std::size_t t = 0; t < nt; ++t) {
+    const int si = sign_in[t], so = sign_out[t];
+    bool bad = false;
+    if (si == 0 || so == 0) {
+      ++report.relative_zero;
+      bad = true;
+    } else if (si != so) {
+      ++report.relative_negative;
+      bad = true;
+    } else {
+      ++report.relative_positive;
+    }
+    if (options.absolute) {
+      int own = so;
+      if (!sign_own.empty()) own = sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
+      if (own <= 0) bad = true;
+    }
+    if (bad) {
+      ++report.num_bad;
+      if (report.first_bad.size() < options.max_reported_bad) report.first_bad.push_back(t);
+    }
+  }
+  return report;
+}
+
+}  // namespace
+
+ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData& out) {
+  const std::size_t nv = in.num_vertices(), nt = in.num_tets();
+  if (out.num_vertices() != nv) {
+    throw_bad_input("", 0, "vertex count mismatch: input has " + std::to_string(nv) + " vertices, output " +
+                               std::to_string(out.num_vertices()));
+  }
+  if (out.num_tets() != nt) {
+    throw_bad_input("", 0, "tet count mismatch: input has " + std::to_string(nt) + " tets, output " +
+                               std::to_string(out.num_tets()));
+  }
+  for (const TetMeshData* mesh : {&in, &out}) {
+    for (std::size_t i = 0; i < mesh->tets.size(); ++i) {
+      if (mesh->tets[i] >= nv) {
+        throw_bad_input("", 0, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
+                                   " references vertex " + std::to_string(mesh->tets[i] + 1ull) + " (1-based) of " +
+                                   std::to_string(nv));
+      }
+    }
+  }
+  ConnectivityPairing pairing;
+  if (in.tets.size() == 0 || std::memcmp(in.tets.data(), out.tets.data(), in.tets.size() * sizeof(std::uint32_t)) == 0) {
+    pairing.match = ConnectivityMatch::Identical;
+    return pairing;
+  }
+  bool same_sets_by_index = true;
+  for (std::size_t t = 0; t < nt && same_sets_by_index; ++t) {
+    same_sets_by_index = sorted_quad(&in.tets[4 * t]) == sorted_quad(&out.tets[4 * t]);
+  }
+  if (same_sets_by_index) {
+    pairing.match = ConnectivityMatch::Reordered;
+    return pairing;
+  }
+  // Tets in another order: sort (vertex set, index) keys of both and pair them up.
+  struct Key {
+    Quad quad;
+    std::uint64_t tet;
+    bool operator<(const Key& o) const { return quad < o.quad || (quad == o.quad && tet < o.tet); }
+  };
+  std::vector<Key> keys_in(nt), keys_out(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    keys_in[t] = {sorted_quad(&in.tets[4 * t]), t};
+    keys_out[t] = {sorted_quad(&out.tets[4 * t]), t};
+  }
+  tbb::parallel_sort(keys_in.begin(), keys_in.end());
+  tbb::parallel_sort(keys_out.begin(), keys_out.end());
+  pairing.output_tet.assign(nt, 0);
+  for (std::size_t k = 0; k < nt; ++k) {
+    if (keys_in[k].quad != keys_out[k].quad) {
+      // Report the first input tet (smallest vertex set) that has no partner.
+      const Key& missing = keys_out[k] < keys_in[k] ? keys_out[k] : keys_in[k];
+      const bool from_input = !(keys_out[k] < keys_in[k]);
+      const std::uint32_t* tet = from_input ? &in.tets[4 * missing.tet] : &out.tets[4 * missing.tet];
+      throw_bad_input("", 0, std::string("connectivity mismatch: ") + (from_input ? "input" : "output") + " tet " +
+                                 std::to_string(missing.tet) + " " + quad_text(tet) + " has no tet with the same vertices in the " +
+                                 (from_input ? "output" : "input"));
+    }
+    pairing.output_tet[keys_in[k].tet] = keys_out[k].tet;
+  }
+  pairing.match = ConnectivityMatch::Permuted;
+  return pairing;
+}
+
+MapCheckReport check_map(const TetMeshData& in, const TetMeshData& out, const BoundaryMap* boundary,
+                         const MapCheckOptions& options) {
+  MapCheckReport report = check_core<double>(in, in.xyz.data(), out, out.xyz.data(), options);
+  if (boundary) {
+    const std::size_t nv = out.num_vertices();
+    report.boundary_checked = true;
+    for (std::size_t k = 0; k < boundary->vids.size(); ++k) {
+      const std::uint32_t v = boundary->vids[k];
+      if (v >= nv) throw_bad_input("", 0, "boundary map vertex id " + std::to_string(v) + " is out of range");
+      const double* p = &out.xyz[3 * v];
+      const double* q = &boundary->xyz[3 * k];
+      // Value equality of doubles (exact; +0 and -0 are the same point).
+      if (!(p[0] == q[0] && p[1] == q[1] && p[2] == q[2])) {
+        ++report.boundary_mismatches;
+        if (report.first_boundary_mismatches.size() < options.max_reported_bad) {
+          report.first_boundary_mismatches.push_back(v);
+        }
+      }
+    }
+  }
+  return report;
+}
+
+MapCheckReport check_map_rational(const TetMeshData& in, const std::vector<Rational>& in_xyz, const TetMeshData& out,
+                                  const std::vector<Rational>& out_xyz, const BoundaryMap* boundary,
+                                  const MapCheckOptions& options) {
+  if (in_xyz.size() != 3 * in.num_vertices()) {
+    throw_bad_input("", 0, "input rationals: " + std::to_string(in_xyz.size()) + " values for " +
+                               std::to_string(in.num_vertices()) + " vertices (need 3 per vertex)");
+  }
+  if (out_xyz.size() != 3 * out.num_vertices()) {
+    throw_bad_input("", 0, "output rationals: " + std::to_string(out_xyz.size()) + " values for " +
+                               std::to_string(out.num_vertices()) + " vertices (need 3 per vertex)");
+  }
+  MapCheckReport report = check_core<Rational>(in, in_xyz.data(), out, out_xyz.data(), options);
+  report.rational = true;
+  if (boundary) {
+    const std::size_t nv = out.num_vertices();
+    report.boundary_checked = true;
+    for (std::size_t k = 0; k < boundary->vids.size(); ++k) {
+      const std::uint32_t v = boundary->vids[k];
+      if (v >= nv) throw_bad_input("", 0, "boundary map vertex id " + std::to_string(v) + " is out of range");
+      bool same = true;
+      for (int i = 0; i < 3; ++i) same = same && out_xyz[3 * v + i] == Rational(boundary->xyz[3 * k + i]);
+      if (!same) {
+        ++report.boundary_mismatches;
+        if (report.first_boundary_mismatches.size() < options.max_reported_bad) {
+          report.first_boundary_mismatches.push_back(v);
+        }
+      }
+    }
+  }
+  return report;
+}
+
+TetSignCounts orient3d_tets_parallel(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                                     std::size_t num_tets, std::int8_t* signs, const char* what) {
+  return batch_signs(xyz, num_vertices, tets, num_tets, signs, true, what);
+}
+
+std::vector<Rational> rationals_from_doubles(const std::vector<double>& xyz) {
+  std::vector<Rational> result(xyz.size());
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (!std::isfinite(xyz[i])) throw_bad_input("", 0, "non-finite coordinate cannot be converted to a rational");
+    result[i] = Rational(xyz[i]);
+  }
+  return result;
+}
+
+}  // namespace volmap

@@ -1,0 +1,111 @@
+// volmap-metrics — VOLMAP's map metrics (volmap-reference.md §7), same numbers as VOLMAP's `metrics`:
+//   volmap-metrics <in.mesh> <out.mesh> [--upper 100] [--json] [--csv file] [--vtu per_tet.vtu]
+//                  [--original original.mesh]
+// Human output reproduces VOLMAP's text block; --csv appends VOLMAP's CSV line ("; " separated, %f);
+// --json prints everything, including the fixed/extra fields (scale-normalised energies, 3r/R quality
+// of input and output, scaled Jacobian, size ratio against --original, "undefined" instead of NaN).
+// Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
+// Exit 0 when computed (also for maps with inverted tets: this tool measures, it does not certify),
+// 2 on bad or mismatched input.
+#include "tool_common.hpp"
+
+#include <volmap/atomic_file.hpp>
+#include <volmap/io.hpp>
+#include <volmap/metrics.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+namespace {
+nlohmann::json stats_json(const volmap::RangeStats& s) {
+  if (!s.defined) return {{"min", nullptr}, {"max", nullptr}, {"mean", nullptr}, {"defined", false}};
+  return {{"min", s.min}, {"max", s.max}, {"mean", s.mean}, {"defined", true}};
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"VOLMAP-compatible volume-map metrics (inverted tets, 5 distortion energies, quality)"};
+  app.name("volmap-metrics");
+  std::string in_path, out_path, csv_path, vtu_path, original_path;
+  double upper = 100.0;
+  bool json = false;
+  app.add_option("in.mesh", in_path, "source tet mesh (VOLMAP-positive)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets)")->required();
+  app.add_option("--upper", upper, "energy clamp upper bound (default 100)");
+  app.add_flag("--json", json, "print one JSON object");
+  app.add_option("--csv", csv_path, "append VOLMAP's CSV line to this file");
+  app.add_option("--original", original_path, "unrefined source mesh: report the size ratio against it");
+  return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    const volmap::TetMeshData in = volmap::read_medit(in_path);
+    const volmap::TetMeshData out = volmap::read_medit(out_path);
+    const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    volmap::MetricsOptions options;
+    options.upper = upper;
+    const volmap::MetricsReport r = volmap::compute_metrics(in, out, options);
+    std::size_t original_tets = 0, original_vertices = 0;
+    if (!original_path.empty()) {
+      const volmap::TetMeshData original = volmap::read_medit(original_path);
+      original_tets = original.num_tets();
+      original_vertices = original.num_vertices();
+    }
+    if (!csv_path.empty()) {
+      // Appended like VOLMAP's log (not atomic by nature: one line is added to an existing file).
+      std::ofstream log(csv_path, std::ios_base::app | std::ios_base::out);
+      if (!log) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "cannot open CSV file for appending");
+      log << volmap::format_metrics_csv_line(out_path, r) << "\n";
+      if (!log.flush()) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "write failed");
+    }
+    const double total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (json) {
+      nlohmann::json j;
+      j["ok"] = true;
+      j["exit_code"] = 0;
+      j["input"] = in_path;
+      j["output"] = out_path;
+      j["num_tets"] = r.num_tets;
+      j["num_inverted"] = r.num_inverted;
+      j["num_degenerate"] = r.num_degenerate;
+      j["inverted_percent"] = r.inverted_percent;
+      j["upper"] = r.upper;
+      nlohmann::json energies, scaled;
+      for (int e = 0; e < volmap::kNumEnergies; ++e) {
+        energies[volmap::energy_name(static_cast<volmap::Energy>(e))] = stats_json(r.energy[e]);
+        scaled[volmap::energy_name(static_cast<volmap::Energy>(e))] = stats_json(r.energy_scaled[e]);
+      }
+      j["energies"] = energies;
+      j["energies_scale_normalised"] = scaled;
+      j["scale_factor"] = r.scale_factor;
+      j["volume_in"] = r.volume_in;
+      j["volume_out"] = r.volume_out;
+      j["tet_radius_ratio_compat"] = stats_json(r.tet_radius_ratio);
+      j["quality_in"] = stats_json(r.quality_in);
+      j["quality_out"] = stats_json(r.quality_out);
+      j["scaled_jacobian_out"] = stats_json(r.scaled_jacobian_out);
+      if (original_tets) {
+        j["size_ratio_tets"] = double(r.num_tets) / double(original_tets);
+        j["size_ratio_vertices"] = double(in.num_vertices()) / double(original_vertices);
+      }
+      j["seconds"] = {{"read", read_seconds}, {"compute", r.seconds}, {"total", total_seconds}};
+      std::cout << j.dump() << "\n";
+    } else {
+      std::cout << volmap::format_metrics_volmap(r);
+      std::cout << "Quality 3r/R input (min/max/avg): " << r.quality_in.min << " / " << r.quality_in.max << " / "
+                << r.quality_in.mean << "\n";
+      std::cout << "Quality 3r/R output, signed (min/max/avg): " << r.quality_out.min << " / " << r.quality_out.max
+                << " / " << r.quality_out.mean << "\n";
+      std::cout << "Scale-normalised (k = " << r.scale_factor << ") Dirichlet / Sym. Dirichlet / Arap E: ";
+      for (int e : {1, 2, 3}) {
+        if (r.energy_scaled[e].defined) std::cout << r.energy_scaled[e].mean; else std::cout << "undefined";
+        std::cout << (e < 3 ? " / " : "\n");
+      }
+      if (original_tets) {
+        std::cout << "Size ratio (tets): " << double(r.num_tets) / double(original_tets) << "\n";
+      }
+    }
+    return volmap_tools::kExitOk;
+  }, &json);
+}
