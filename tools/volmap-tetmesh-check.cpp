@@ -1,0 +1,227 @@
+// volmap-tetmesh-check <in.mesh|.vtk|.vtu> [--fix out.mesh] [--json]
+// The seven VOLMAP input checks (volmap-reference.md §8 `tetmesh_checks`, done exactly on every tet):
+// orientation, volume, genus, components, manifold, closed, self_intersections. One line per check
+// (PASSED/FAILED with figures) or, with --json, one JSON object.
+// --fix out: when the mesh is coherently opposite (no tet with orient3d > 0), writes it with local
+// vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex order, tet order and
+// labels kept), re-checks the written mesh and reports it; refuses (exit 1, nothing written) when
+// the signs are mixed. A mesh already in the VOLMAP convention is written unchanged.
+// A surface (.off/.obj/.stl/.ply) gets the five surface checks instead (no orientation/volume).
+// Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
+// refused, 2 usage or bad input (one-line reason on stderr).
+#include "tool_common.hpp"
+
+#include <volmap/io.hpp>
+#include <volmap/tetmesh_checks.hpp>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+
+namespace {
+
+using Json = nlohmann::json;
+
+std::string lower_extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool is_surface_extension(const std::string& ext) { return ext == "off" || ext == "obj" || ext == "stl" || ext == "ply"; }
+
+// Surface as flat triangle arrays (OpenMesh triangulates polygons on read, keeping vertex order).
+void read_surface_triangles(const std::string& path, std::vector<double>& xyz, std::vector<std::uint32_t>& tris) {
+  struct Traits : OpenMesh::DefaultTraits {
+    typedef OpenMesh::Vec3d Point;
+  };
+  OpenMesh::TriMesh_ArrayKernelT<Traits> mesh;
+  OpenMesh::IO::Options opt;
+  std::FILE* probe = std::fopen(path.c_str(), "rb");
+  if (!probe) throw volmap::Error(volmap::ErrorKind::Io, path, 0, "cannot open file");
+  std::fclose(probe);
+  if (!OpenMesh::IO::read_mesh(mesh, path, opt))
+    throw volmap::Error(volmap::ErrorKind::BadInput, path, 0, "cannot read surface (OpenMesh reader failed)");
+  xyz.clear();
+  tris.clear();
+  xyz.reserve(3 * mesh.n_vertices());
+  for (const auto& v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    xyz.insert(xyz.end(), {p[0], p[1], p[2]});
+  }
+  tris.reserve(3 * mesh.n_faces());
+  for (const auto& f : mesh.faces())
+    for (const auto& v : mesh.fv_range(f)) tris.push_back(std::uint32_t(v.idx()));
+}
+
+Json checks_json(const std::vector<volmap::CheckItem>& checks) {
+  Json j = Json::object();
+  for (const auto& c : checks) j[c.key] = Json{{"passed", c.passed}, {"detail", c.detail}};
+  return j;
+}
+
+Json self_intersections_json(const volmap::SelfIntersectionResult& r) {
+  Json pairs = Json::array();
+  for (const auto& p : r.first_pairs) pairs.push_back({p.first, p.second});
+  Json coincident = Json::array();
+  for (const auto& p : r.first_coincident) coincident.push_back({p.first, p.second});
+  return Json{{"intersecting_pairs", r.intersecting_pairs}, {"first_pairs", pairs},
+              {"coincident_vertex_pairs", r.coincident_vertices}, {"first_coincident", coincident},
+              {"degenerate_triangles", r.degenerate_triangles}, {"first_degenerate", r.first_degenerate},
+              {"candidate_pairs", r.candidate_pairs}};
+}
+
+Json tet_report_json(const volmap::TetMeshCheckReport& r) {
+  const auto& t = r.topology;
+  return Json{{"all_passed", r.all_passed()},
+              {"vertices", r.num_vertices},
+              {"tets", r.num_tets},
+              {"orientation",
+               {{"class", volmap::to_string(r.orientation)},
+                {"positive", r.signs.positive},
+                {"negative", r.signs.negative},
+                {"zero", r.signs.zero}}},
+              {"checks", checks_json(r.checks)},
+              {"topology",
+               {{"boundary_faces", t.num_boundary_faces},
+                {"boundary_edges", t.num_boundary_edges},
+                {"boundary_vertices", t.num_boundary_vertices},
+                {"boundary_euler", t.boundary_euler},
+                {"boundary_genus", t.boundary_genus_defined ? Json(t.boundary_genus) : Json(nullptr)},
+                {"boundary_components", t.num_boundary_components},
+                {"tet_components", t.num_tet_components},
+                {"unused_vertices", t.num_unused_vertices},
+                {"degenerate_tets", t.num_degenerate_tets},
+                {"nonmanifold_faces", t.num_nonmanifold_faces},
+                {"inconsistent_faces", t.num_inconsistent_faces},
+                {"border_edges", t.num_border_edges},
+                {"overshared_edges", t.num_overshared_edges},
+                {"nonmanifold_boundary_vertices", t.num_nonmanifold_boundary_vertices}}},
+              {"self_intersections", self_intersections_json(r.self_intersections)}};
+}
+
+void print_checks(const std::vector<volmap::CheckItem>& checks) {
+  for (const auto& c : checks)
+    std::printf("%-19s %s  %s\n", c.key.c_str(), c.passed ? "PASSED" : "FAILED", c.detail.c_str());
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Run the seven VOLMAP checks on a tet mesh (orientation, volume, genus, components, manifold, "
+               "closed, self-intersections), exactly on every tet. Surfaces (.off/.obj/.stl/.ply) get the five "
+               "surface checks.",
+               "volmap-tetmesh-check"};
+  std::string input, fix_output;
+  bool json = false;
+  app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu) or surface (.off, .obj, .stl, .ply)")->required();
+  app.add_option("--fix", fix_output,
+                 "write the mesh flipped to the VOLMAP convention (v0<->v1 in every tet) when it is coherently "
+                 "opposite; refused (exit 1) when orientation is mixed");
+  app.add_flag("--json", json, "print one JSON object");
+  return volmap_tools::run_tool(
+      app, argc, argv,
+      [&]() -> int {
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::string ext = lower_extension(input);
+        if (is_surface_extension(ext)) {
+          if (!fix_output.empty())
+            throw volmap::Error(volmap::ErrorKind::Unsupported, input, 0, "--fix applies to tet meshes only");
+          std::vector<double> xyz;
+          std::vector<std::uint32_t> tris;
+          read_surface_triangles(input, xyz, tris);
+          const auto r = volmap::check_triangle_surface(xyz, tris);
+          const bool ok = r.all_passed();
+          if (json) {
+            const auto& st = r.topology;
+            Json j{{"ok", ok}, {"exit_code", ok ? 0 : 1}, {"input", input}, {"kind", "surface"},
+                   {"all_passed", ok}, {"vertices", st.num_vertices}, {"triangles", st.num_triangles},
+                   {"checks", checks_json(r.checks)},
+                   {"topology", {{"euler", st.euler}, {"genus", st.genus_defined ? Json(st.genus) : Json(nullptr)},
+                                 {"components", st.num_components}, {"edges", st.num_edges},
+                                 {"border_edges", st.num_border_edges}, {"overshared_edges", st.num_overshared_edges},
+                                 {"nonmanifold_vertices", st.num_nonmanifold_vertices},
+                                 {"inconsistent_edges", st.num_inconsistent_edges}}},
+                   {"self_intersections", self_intersections_json(r.self_intersections)},
+                   {"time_ms", ms_since(t0)}};
+            std::cout << j.dump() << "\n";
+          } else {
+            std::printf("%s: surface, %zu vertices, %zu triangles\n", input.c_str(), r.topology.num_vertices,
+                        r.topology.num_triangles);
+            print_checks(r.checks);
+            std::printf("%s\n", ok ? "all surface checks PASSED" : "surface checks FAILED");
+          }
+          return ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+        }
+
+        volmap::TetMeshData mesh = volmap::read_tet_mesh(input);
+        const double read_ms = ms_since(t0);
+        const auto report = volmap::check_tet_mesh(mesh);
+        const double check_ms = ms_since(t0) - read_ms;
+        bool ok = report.all_passed();
+        Json j;
+        if (json) j = Json{{"input", input}, {"kind", "tet_mesh"}};
+        if (json) j["report"] = tet_report_json(report);
+        if (!json) {
+          std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
+          print_checks(report.checks);
+          std::printf("%s\n", ok ? "all checks PASSED" : "checks FAILED");
+        }
+
+        if (!fix_output.empty()) {
+          Json fix;
+          fix["output"] = fix_output;
+          if (report.orientation == volmap::OrientationClass::Mixed ||
+              report.orientation == volmap::OrientationClass::Empty) {
+            const std::string why = report.orientation == volmap::OrientationClass::Mixed
+                                        ? "orientation is mixed (" + std::to_string(report.signs.positive) + " positive, " +
+                                              std::to_string(report.signs.negative) + " negative): a global flip cannot fix it"
+                                        : "no tet has a non-zero volume";
+            fix["written"] = false;
+            fix["reason"] = "refused: " + why;
+            if (!json) std::printf("fix: refused, %s; nothing written\n", why.c_str());
+            ok = false;
+          } else {
+            const bool flip = report.orientation == volmap::OrientationClass::CoherentlyOpposite;
+            if (flip) volmap::flip_all_tets(mesh);
+            volmap::write_tet_mesh(fix_output, mesh);
+            // Re-read what was written and check it: the verdict is on the numbers on disk.
+            const auto written = volmap::read_tet_mesh(fix_output);
+            const auto after = volmap::check_tet_mesh(written);
+            fix["written"] = true;
+            fix["flipped_tets"] = flip ? report.num_tets : 0;
+            fix["report"] = tet_report_json(after);
+            ok = after.all_passed();
+            if (!json) {
+              if (flip)
+                std::printf("fix: wrote %s with v0<->v1 swapped in all %zu tets; re-check of the written file:\n",
+                            fix_output.c_str(), report.num_tets);
+              else
+                std::printf("fix: already in the VOLMAP convention, wrote %s unchanged; re-check:\n", fix_output.c_str());
+              print_checks(after.checks);
+              std::printf("%s\n", ok ? "fixed mesh: all checks PASSED" : "fixed mesh: checks FAILED");
+            }
+          }
+          if (json) j["fix"] = fix;
+        }
+        if (json) {
+          j["ok"] = ok;
+          j["exit_code"] = ok ? 0 : 1;
+          j["read_ms"] = read_ms;
+          j["check_ms"] = check_ms;
+          std::cout << j.dump() << "\n";
+        }
+        return ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+      },
+      &json);
+}
