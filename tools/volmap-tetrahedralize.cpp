@@ -1,10 +1,11 @@
 // volmap-tetrahedralize <surface.{obj,off,stl,ply}> <out.mesh> [--quality 1.414] [--max-volume V] [--json]
-// Checks the surface (closed, manifold, one component, genus 0), tetrahedralizes it with TetGen
+// Checks the surface (closed, manifold, one component, genus 0, no self-intersections), tetrahedralizes it with TetGen
 // (p q<quality> Y, boundary preserved) and writes a VOLMAP-positive Medit mesh.
 // Exit 0 = written; 1 = surface refused (topology) or TetGen failed (self-intersections, ...); 2 = usage/IO.
 #include "tool_common.hpp"
 
 #include <volmap/io.hpp>
+#include <volmap/tetmesh_checks.hpp>
 #include <volmap/tetrahedralize.hpp>
 
 #include <chrono>
@@ -26,6 +27,14 @@ int main(int argc, char** argv) {
     const volmap::TriangleSurface s = volmap::read_triangle_surface(in_path);
     const std::string problem = volmap::surface_topology_problem(s);
     if (!problem.empty()) throw volmap::Error(volmap::ErrorKind::Failed, in_path, 0, "surface refused: " + problem);
+    // The full surface check (exact self-intersections) of tetmesh_checks before TetGen sees it.
+    const volmap::SurfaceCheckReport report = volmap::check_triangle_surface(s.xyz, s.tris);
+    if (!report.all_passed()) {
+      std::string why;
+      for (const auto& c : report.checks)
+        if (!c.passed) why += (why.empty() ? "" : "; ") + c.key + ": " + c.detail;
+      throw volmap::Error(volmap::ErrorKind::Failed, in_path, 0, "surface refused: " + why);
+    }
     const volmap::TetMeshData m = volmap::tetrahedralize_surface(s, opt);
     volmap::write_medit(out_path, m);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -589,6 +589,54 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     if (!(n > 0)) fail("a map point coincides with the sphere centre");
     for (int k = 0; k < 3; ++k) out.map.xyz[3 * i + k] = centre[k] + radius * (d[k] / n);
   }
+  // Exact re-check around the centre; where rounding made a cone non-positive, nudge the vertices
+  // of the offending triangles by a few ulps (each coordinate) until all their triangles are positive.
+  const auto faces = boundary_half_faces(out.mesh);
+  std::vector<std::int32_t> slot(out.mesh.num_vertices(), -1);
+  for (std::size_t i = 0; i < out.map.size(); ++i) slot[out.map.vids[i]] = static_cast<std::int32_t>(i);
+  std::vector<Tri> tris;
+  for (auto hf : faces) {
+    const auto f = half_face_vertices(out.mesh, hf);
+    tris.push_back({f[0], f[1], f[2]});
+  }
+  auto cone = [&](const Tri& t) {
+    return orient3d_filtered(&out.map.xyz[3 * slot[t[0]]], &out.map.xyz[3 * slot[t[1]]], &out.map.xyz[3 * slot[t[2]]],
+                             centre.data());
+  };
+  std::vector<std::vector<std::uint32_t>> vtris;
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    if (cone(tris[t]) <= 0) {
+      if (vtris.empty()) {
+        vtris.assign(out.mesh.num_vertices(), {});
+        for (std::uint32_t u = 0; u < tris.size(); ++u)
+          for (auto v : tris[u]) vtris[v].push_back(u);
+      }
+      for (auto v : tris[t]) {
+        double* p = &out.map.xyz[3 * slot[v]];
+        const Point3 orig{p[0], p[1], p[2]};
+        auto all_positive = [&] {
+          for (auto u : vtris[v])
+            if (cone(tris[u]) <= 0) return false;
+          return true;
+        };
+        bool fixed = all_positive();
+        for (int step = 1; step <= 4 && !fixed; ++step)
+          for (int dx = -1; dx <= 1 && !fixed; ++dx)
+            for (int dy = -1; dy <= 1 && !fixed; ++dy)
+              for (int dz = -1; dz <= 1 && !fixed; ++dz) {
+                const int dir[3] = {dx, dy, dz};
+                for (int k = 0; k < 3; ++k) {
+                  p[k] = orig[k];
+                  for (int r = 0; r < step; ++r)
+                    if (dir[k]) p[k] = std::nextafter(p[k], dir[k] > 0 ? 1e300 : -1e300);
+                }
+                fixed = all_positive();
+              }
+        if (!fixed)
+          for (int k = 0; k < 3; ++k) p[k] = orig[k];
+        if (fixed) break;
+      }
+    }
   SurfaceMapCheckOptions opt;
   opt.override_kernel = true;
   opt.kernel = centre;
