@@ -362,7 +362,7 @@ TetMeshData VtkReader::read() {
       if (type != ValueType::Float && type != ValueType::Double)
         throw Error(ErrorKind::Unsupported, path_, t.line, "POINTS must be float or double");
       if (binary_ && n > tok_.remaining() / (3 * type_size(type)))
-        fail(t.line, "POINTS: declared count does not fit in the file");
+        fail(t.line, "POINTS: declared count does not fit in the file (truncated binary block?)");
       read_doubles(3 * n, type, mesh.xyz, "POINTS", t.line);
       have_points = true;
     } else if (iequals(k, "CELLS")) {
