@@ -139,7 +139,7 @@ TEST_SUITE("long") {
   TEST_CASE("all 20 G1 meshes map onto every domain and the sphere") {
     for (const char* n : kG1) {
       const auto added = map_all(n);
-      MESSAGE(n << " added vertices cube/tet/pyr/octa/star: " << (added.size() == 5 ? std::to_string(added[0]) + "/" +
+      MESSAGE(std::string(n) << " added vertices cube/tet/pyr/octa/star: " << (added.size() == 5 ? std::to_string(added[0]) + "/" +
                                                                     std::to_string(added[1]) + "/" + std::to_string(added[2]) +
                                                                     "/" + std::to_string(added[3]) + "/" + std::to_string(added[4])
                                                               : std::string("-")));

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   std::string mesh_path, map_path, domain_arg;
   bool json = false, either_sign = false;
   double tolerance = 0;
-  app.add_option("mesh", mesh_path, "input tet mesh (Medit .mesh)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu)")->required();
   app.add_option("map", map_path, "boundary map: one 'vid x y z' line per boundary vertex")->required();
   app.add_option("--domain", domain_arg, "cube|tet|pyr|octa|star|sphere or a custom domain file: also check that "
                                          "points lie on the domain and corners hit their targets exactly");
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     std::optional<volmap::Domain> domain;
     const bool sphere = domain_arg == "sphere" || domain_arg == "SPHERE";
     if (!domain_arg.empty() && !sphere) domain = volmap::domain_from_name_or_file(domain_arg);
-    const volmap::TetMeshData mesh = volmap::read_medit(mesh_path);
+    const volmap::TetMeshData mesh = volmap::read_tet_mesh(mesh_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::SurfaceMapCheckOptions opt;
     opt.position_tolerance = tolerance;

@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   std::string domain_name, mesh_path, map_path, domain_file, refined_path;
   bool json = false;
   app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
-  app.add_option("mesh", mesh_path, "input tet mesh (Medit .mesh, VOLMAP-positive)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
   app.add_option("--refined", refined_path, "where to write the refined tet mesh when edges are split");
@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     } else {
       domain = volmap::builtin_domain(domain_name);
     }
-    const volmap::TetMeshData mesh = volmap::read_medit(mesh_path);
+    const volmap::TetMeshData mesh = volmap::read_tet_mesh(mesh_path);
     volmap::SurfaceMapResult r = volmap::map_surface_to_domain(mesh, domain);
     if (sphere)
       r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},

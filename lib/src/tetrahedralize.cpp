@@ -2,12 +2,11 @@
 // TetGen is called through its library interface (TETLIBRARY: errors are thrown as ints, decoded
 // below) in a forked child with stdout on /dev/null (see tetrahedralize_surface for why).
 #include <volmap/error.hpp>
+#include <volmap/io_surface.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface_map_check.hpp>
 #include <volmap/tetrahedralize.hpp>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <tetgen.h>
 
 #include <fcntl.h>
@@ -25,12 +24,7 @@
 namespace volmap {
 namespace {
 
-// Double-precision points (OpenMesh's default is float, which would move the input vertices).
-struct DoubleTraits : public OpenMesh::DefaultTraits {
-  typedef OpenMesh::Vec3d Point;
-  typedef OpenMesh::Vec3d Normal;
-};
-using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
 
 std::string tetgen_reason(int code) {
   switch (code) {
@@ -47,37 +41,11 @@ std::string tetgen_reason(int code) {
 }  // namespace
 
 TriangleSurface read_triangle_surface(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_io(path, "cannot open surface file");
-  PolyMesh mesh;
-  OpenMesh::IO::Options opt;
-  // OpenMesh reports faces it cannot add (complex edges/vertices) on its error stream; capture them.
-  std::ostringstream captured;
-  omerr().disconnect(std::cerr);
-  omerr().connect(captured);
-  omlog().disable();
-  const bool ok = OpenMesh::IO::read_mesh(mesh, path, opt);
-  omerr().disconnect(captured);
-  omerr().connect(std::cerr);
-  if (!ok) throw Error(ErrorKind::BadInput, path, 0, "OpenMesh cannot read this surface (unknown format or malformed)");
+  // io_surface parses OBJ/OFF/PLY (incl. tristrips) in double precision and STL through OpenMesh.
+  SurfaceData d = read_surface(path);
   TriangleSurface s;
-  for (std::size_t pos = captured.str().find("complex"); pos != std::string::npos;
-       pos = captured.str().find("complex", pos + 1))
-    ++s.rejected_faces;
-  s.xyz.reserve(3 * mesh.n_vertices());
-  for (auto vh : mesh.vertices()) {
-    const auto p = mesh.point(vh);
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(p[k])) throw Error(ErrorKind::BadInput, path, 0, "non-finite vertex coordinate");
-      s.xyz.push_back(p[k]);
-    }
-  }
-  for (auto fh : mesh.faces()) {
-    std::vector<std::uint32_t> poly;
-    for (auto vh : mesh.fv_range(fh)) poly.push_back(static_cast<std::uint32_t>(vh.idx()));
-    for (std::size_t i = 1; i + 1 < poly.size(); ++i) s.tris.insert(s.tris.end(), {poly[0], poly[i], poly[i + 1]});
-  }
-  if (s.tris.empty()) throw Error(ErrorKind::BadInput, path, 0, "the surface has no faces");
+  s.xyz = std::move(d.xyz);
+  s.tris = std::move(d.tris);
   return s;
 }
 

@@ -17,14 +17,13 @@ namespace volmap {
 struct TriangleSurface {
   std::vector<double> xyz;           // 3 per vertex
   std::vector<std::uint32_t> tris;   // 3 per triangle, 0-based
-  std::size_t rejected_faces = 0;    // faces the reader could not add (non-manifold edge/vertex)
+  std::size_t rejected_faces = 0;    // faces a reader could not add (non-manifold edge/vertex)
   std::size_t num_vertices() const { return xyz.size() / 3; }
   std::size_t num_triangles() const { return tris.size() / 3; }
 };
 
-// Reads .obj/.off/.stl (ASCII or binary)/.ply (ASCII or binary) with OpenMesh. Throws Error(Io /
-// BadInput). Faces OpenMesh cannot add (non-manifold edges or vertices) are counted in
-// rejected_faces, which surface_topology_problem() reports.
+// Reads .obj/.off/.stl (ASCII or binary)/.ply (ASCII or binary, triangle strips too) through
+// <volmap/io_surface.hpp> (OpenMesh for STL). Throws Error(Io / BadInput / Unsupported).
 TriangleSurface read_triangle_surface(const std::string& path);
 
 // Topological problems that make a surface unusable for a genus-0 volume map, empty when none:
