@@ -77,6 +77,7 @@ TEST_CASE("duck onto the custom triprism domain") {
   CHECK(c.ok);
   CHECK(c.corners_exact == 6);
   CHECK(r.map.size() == 1147 + r.added_vertices);  // duck has 1147 boundary vertices
+  CHECK(r.added_vertices == 10);  // the reference: 10 splits, 1157 map lines (volmap-reference.md §3)
 }
 
 TEST_CASE("mirrored input and open boundaries are refused") {
