@@ -6,6 +6,7 @@
 #include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface_map.hpp>
+#include <volmap/surface_map_check.hpp>
 #include <volmap/tetrahedralize.hpp>
 
 #include "test_support.hpp"
@@ -64,6 +65,16 @@ TEST_CASE("volmap-tetrahedralize tool: exit codes, then the pipeline to a surfac
   for (const char* d : {"cube", "star"}) {
     CAPTURE(d);
     CHECK_NOTHROW(map_surface_to_domain(m, builtin_domain(d)));
+  }
+  // cgal/part.off -> octa: the reference arc order traces the equator with nodes 4 and 5 on the same
+  // side, so the mapper must fall back to tracing a spanning tree first.
+  if (const auto part = volmap_test::data_file("surfaces/cgal/part.off"); !part.empty()) {
+    const std::string pm = (dir / "part.mesh").string();
+    CHECK(run(tool + " " + part.string() + " " + pm) == 0);
+    const Domain octa = builtin_domain("octa");
+    SurfaceMapResult r;
+    CHECK_NOTHROW(r = map_surface_to_domain(read_medit(pm), octa));
+    CHECK(check_surface_map(r.mesh, r.map, &octa).ok);
   }
   for (const char* rel : {"negative/cinolib_torus.obj", "negative/cgal_bull.off", "negative/libigl_cow.off"}) {
     CAPTURE(rel);

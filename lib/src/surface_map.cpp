@@ -114,13 +114,15 @@ struct Surface {
 
 class Mapper {
  public:
-  Mapper(const TetMeshData& mesh, const Domain& domain) : mesh_(mesh), domain_(domain) {}
+  Mapper(const TetMeshData& mesh, const Domain& domain, std::vector<int> order)
+      : mesh_(mesh), domain_(domain), order_(std::move(order)) {}
 
   SurfaceMapResult run();
 
  private:
   const TetMeshData& mesh_;
   const Domain& domain_;
+  std::vector<int> order_;  // arcs in tracing order (a diagonal by its first arc)
   Surface s_;
   std::vector<char> masked_;
   std::vector<std::uint32_t> node_vertex_;
@@ -526,7 +528,7 @@ SurfaceMapResult Mapper::run() {
   arc_path_.assign(domain_.arcs.size(), {});
   assign_nodes(result);
 
-  for (int arc : domain_.trace_order()) {
+  for (int arc : order_) {
     const DomainDiagonal* diag = nullptr;
     for (auto& g : domain_.diagonals)
       if (g.first_arc == arc) diag = &g;
@@ -571,10 +573,51 @@ SurfaceMapResult Mapper::run() {
 
 }  // namespace
 
+// Fallback tracing order: first a spanning tree of the nodes that have probes (BFS from node 0 over
+// the arcs joining two such nodes, in domain order), then every other arc in the domain's order.
+// With the traced graph connected and containing every node from the start, a correct rotation at
+// every node makes the partial embedding equivalent to the domain's, so no later arc can find its
+// face cut off (the reference order can trace a cycle, e.g. the octahedron's equator, with two
+// still isolated nodes on the same side).
+std::vector<int> spanning_tree_first_order(const Domain& d) {
+  const std::vector<int> base = d.trace_order();
+  std::vector<char> in_diag(d.arcs.size(), 0);
+  for (auto& g : d.diagonals) in_diag[g.first_arc] = in_diag[g.second_arc] = 1;
+  std::vector<char> reached(d.num_nodes(), 0), taken(d.arcs.size(), 0);
+  std::vector<int> order, queue{0};
+  reached[0] = 1;
+  for (std::size_t q = 0; q < queue.size(); ++q)
+    for (int a : base) {
+      if (in_diag[a] || taken[a]) continue;
+      const int u = d.arcs[a].from, v = d.arcs[a].to;
+      if (!d.has_probe(u) || !d.has_probe(v)) continue;
+      const int w = u == queue[q] ? v : v == queue[q] ? u : -1;
+      if (w < 0 || reached[w]) continue;
+      reached[w] = 1;
+      taken[a] = 1;
+      order.push_back(a);
+      queue.push_back(w);
+    }
+  for (int a : base)
+    if (!taken[a]) order.push_back(a);
+  return order;
+}
+
 SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain) {
   if (mesh.num_tets() == 0) throw Error(ErrorKind::BadInput, "", 0, "the mesh has no tets");
-  Mapper mapper(mesh, domain);
-  return mapper.run();
+  try {
+    return Mapper(mesh, domain, domain.trace_order()).run();
+  } catch (const Error& first) {
+    if (first.kind() != ErrorKind::Failed) throw;
+    const std::vector<int> order = spanning_tree_first_order(domain);
+    if (order == domain.trace_order()) throw;
+    try {
+      return Mapper(mesh, domain, order).run();
+    } catch (const Error& second) {
+      if (second.kind() != ErrorKind::Failed) throw;
+      fail(std::string(first.what()) + "; retried with a spanning tree traced first: " + second.what());
+    }
+  }
 }
 
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& centre, double radius) {
