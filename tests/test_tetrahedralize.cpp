@@ -76,6 +76,20 @@ TEST_CASE("volmap-tetrahedralize tool: exit codes, then the pipeline to a surfac
     CHECK_NOTHROW(r = map_surface_to_domain(read_medit(pm), octa));
     CHECK(check_surface_map(r.mesh, r.map, &octa).ok);
   }
+  // A 4-vertex surface (one tet): too coarse for any domain until every boundary edge is split.
+  if (const auto tiny = volmap_test::data_file("surfaces/cgal/tetrahedron.off"); !tiny.empty()) {
+    const std::string tm = (dir / "tiny.mesh").string();
+    CHECK(run(tool + " " + tiny.string() + " " + tm) == 0);
+    const TetMeshData t = read_medit(tm);
+    for (const char* dn : {"cube", "tet", "pyr", "octa", "star"}) {
+      CAPTURE(dn);
+      const Domain d = builtin_domain(dn);
+      SurfaceMapResult r;
+      CHECK_NOTHROW(r = map_surface_to_domain(t, d));
+      CHECK(check_surface_map(r.mesh, r.map, &d).ok);
+      CHECK(r.added_vertices > 0);
+    }
+  }
   for (const char* rel : {"negative/cinolib_torus.obj", "negative/cgal_bull.off", "negative/libigl_cow.off"}) {
     CAPTURE(rel);
     const auto p = volmap_test::data_file(rel);

@@ -114,8 +114,8 @@ struct Surface {
 
 class Mapper {
  public:
-  Mapper(const TetMeshData& mesh, const Domain& domain, std::vector<int> order)
-      : mesh_(mesh), domain_(domain), order_(std::move(order)) {}
+  Mapper(const TetMeshData& mesh, const Domain& domain, std::vector<int> order, int subdivisions)
+      : mesh_(mesh), domain_(domain), order_(std::move(order)), subdivisions_(subdivisions) {}
 
   SurfaceMapResult run();
 
@@ -123,6 +123,7 @@ class Mapper {
   const TetMeshData& mesh_;
   const Domain& domain_;
   std::vector<int> order_;  // arcs in tracing order (a diagonal by its first arc)
+  int subdivisions_ = 0;    // rounds of splitting every boundary edge before anything else
   Surface s_;
   std::vector<char> masked_;
   std::vector<std::uint32_t> node_vertex_;
@@ -524,6 +525,14 @@ SurfaceMapResult Mapper::run() {
   s_.build_adjacency();
   for (std::uint32_t v = 0; v < nv0; ++v)
     if (!s_.vtris[v].empty()) s_.ring(v);  // throws when not manifold
+  for (int round = 0; round < subdivisions_; ++round) {  // coarse surfaces: split every boundary edge
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const Tri& t : s_.tris)
+      for (int k = 0; k < 3; ++k)
+        if (t[k] < t[(k + 1) % 3]) edges.push_back({t[k], t[(k + 1) % 3]});
+    for (auto& e : edges) s_.split_edge(e.first, e.second);
+    s_.build_adjacency();
+  }
   grow_vertex_arrays();
   arc_path_.assign(domain_.arcs.size(), {});
   assign_nodes(result);
@@ -605,19 +614,24 @@ std::vector<int> spanning_tree_first_order(const Domain& d) {
 
 SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain) {
   if (mesh.num_tets() == 0) throw Error(ErrorKind::BadInput, "", 0, "the mesh has no tets");
-  try {
-    return Mapper(mesh, domain, domain.trace_order()).run();
-  } catch (const Error& first) {
-    if (first.kind() != ErrorKind::Failed) throw;
-    const std::vector<int> order = spanning_tree_first_order(domain);
-    if (order == domain.trace_order()) throw;
+  // Attempts: the reference order; a spanning tree first; then, for surfaces too coarse for the
+  // domain (fewer free vertices than nodes, no room between arcs), 1 and 2 rounds of splitting every
+  // boundary edge first (spanning tree order).
+  const std::vector<int> reference = domain.trace_order();
+  const std::vector<int> tree = spanning_tree_first_order(domain);
+  struct Attempt { const std::vector<int>* order; int subdivisions; };
+  const Attempt attempts[] = {{&reference, 0}, {&tree, 0}, {&tree, 1}, {&tree, 2}};
+  std::string errors;
+  for (const auto& a : attempts) {
+    if (a.order == &tree && a.subdivisions == 0 && tree == reference) continue;
     try {
-      return Mapper(mesh, domain, order).run();
-    } catch (const Error& second) {
-      if (second.kind() != ErrorKind::Failed) throw;
-      fail(std::string(first.what()) + "; retried with a spanning tree traced first: " + second.what());
+      return Mapper(mesh, domain, *a.order, a.subdivisions).run();
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Failed) throw;
+      if (errors.empty()) errors = e.what();
     }
   }
+  fail(errors + " (also failed with a spanning tree traced first and after 1 and 2 rounds of boundary subdivision)");
 }
 
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& centre, double radius) {

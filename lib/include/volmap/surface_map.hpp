@@ -13,7 +13,8 @@
 //     If an arc cannot be traced in that order (the reference order can close a cycle, e.g. the
 //     octahedron's equator, with two still isolated nodes on the same side), everything is redone
 //     with a spanning tree of the nodes traced first, which keeps the partial embedding equivalent
-//     to the domain's at every step.
+//     to the domain's at every step. Surfaces too coarse for the domain are then retried after 1 and
+//     2 rounds of splitting every boundary edge (on the tets as well).
 //  3. Refinement on the tet mesh (new vertices appended, ids stable): after each arc every boundary
 //     edge joining two arc/node vertices that is not an arc edge is split at its midpoint (all tets
 //     around it are split), which keeps a free path between any two arcs (paper Fig. 4) and makes
