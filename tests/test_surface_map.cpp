@@ -80,20 +80,38 @@ TEST_CASE("duck onto the custom triprism domain") {
   CHECK(r.added_vertices == 10);  // the reference: 10 splits, 1157 map lines (volmap-reference.md §3)
 }
 
-TEST_CASE("mirrored input and open boundaries are refused") {
+TEST_CASE("mirrored input and genus-1 boundaries are refused; a single tet is refined until it maps") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/bone.mesh");
   TetMeshData mesh = read_medit(mesh_path.string());
   TetMeshData flipped = mesh;
   for (std::size_t t = 0; t < flipped.num_tets(); ++t) std::swap(flipped.tets[4 * t], flipped.tets[4 * t + 1]);
   CHECK_THROWS_AS(map_surface_to_domain(flipped, builtin_domain("cube")), Error);
-  // A single tet: its boundary is a sphere but too small to host 8 distinct corners.
+  // A single tet: its boundary is a sphere, at first too small to host 8 distinct corners.
   TetMeshData one;
   one.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
   one.tets = {0, 1, 3, 2};  // orient3d > 0? swap if needed
   if (orient3d(&one.xyz[0], &one.xyz[3], &one.xyz[9], &one.xyz[6]) < 0) std::swap(one.tets[0], one.tets[1]);
   one.vertex_labels.assign(4, 0);
   one.tet_labels.assign(1, 0);
-  CHECK_THROWS_AS(map_surface_to_domain(one, builtin_domain("cube")), Error);
+  // The 4-vertex boundary is refined until the cube fits (1-2 rounds of boundary edge splits).
+  {
+    const Domain cube = builtin_domain("cube");
+    const SurfaceMapResult r = map_surface_to_domain(one, cube);
+    CHECK(check_surface_map(r.mesh, r.map, &cube).ok);
+    CHECK(r.added_vertices >= 4);
+  }
+  // A genus-1 boundary (negative/robustpolycube_NY_2.mesh is in the opposite convention: flip it).
+  if (const auto ny = volmap_test::data_file("negative/robustpolycube_NY_2.mesh"); !ny.empty()) {
+    TetMeshData m = read_medit(ny.string());
+    for (std::size_t t = 0; t < m.num_tets(); ++t) std::swap(m.tets[4 * t], m.tets[4 * t + 1]);
+    try {
+      map_surface_to_domain(m, builtin_domain("cube"));
+      FAIL("genus-1 boundary accepted");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::BadInput);
+      CHECK(std::string(e.what()).find("genus-0") != std::string::npos);
+    }
+  }
 }
 
 static int run(const std::string& cmd) {
