@@ -2,6 +2,7 @@
 // crash/hang recording, atomic append + resume, and the self-contained report.
 #include <doctest/doctest.h>
 #include <test_support.hpp>
+#include <tiny_dataset.hpp>
 #include <volmap/benchmark_report.hpp>
 #include <volmap/benchmark_runner.hpp>
 #include <volmap/dataset.hpp>
@@ -26,47 +27,17 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-void write_file(const fs::path& p, const std::string& text, bool executable = false) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-  if (executable) ::chmod(p.c_str(), 0755);
-}
-
-// A unit cube cut into the 6 Kuhn tets around the diagonal 0-7, every tet VOLMAP-positive, as a
-// Medit file, plus the identity boundary map (every vertex is on the boundary).
-void write_cube_case(const fs::path& root, const std::string& group, const std::string& name, const std::string& dom) {
-  const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
-  const int paths[6][2] = {{1, 3}, {1, 5}, {2, 3}, {2, 6}, {4, 5}, {4, 6}};
-  std::string mesh = "MeshVersionFormatted 1\nDimension 3\nVertices\n8\n";
-  for (auto& p : v) mesh += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 0\n";
-  mesh += "Tetrahedra\n6\n";
-  for (auto& pth : paths) {
-    int t[4] = {0, pth[0], pth[1], 7};
-    if (volmap::orient3d(v[t[0]], v[t[1]], v[t[2]], v[t[3]]) < 0) std::swap(t[0], t[1]);
-    REQUIRE(volmap::orient3d(v[t[0]], v[t[1]], v[t[2]], v[t[3]]) > 0);
-    mesh += std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + " " +
-            std::to_string(t[3] + 1) + " 0\n";
-  }
-  mesh += "End\n";
-  write_file(root / group / (name + ".mesh"), mesh);
-  std::string map;
-  for (int i = 0; i < 8; ++i)
-    map += std::to_string(i) + " " + std::to_string(v[i][0]) + " " + std::to_string(v[i][1]) + " " +
-           std::to_string(v[i][2]) + "\n";
-  write_file(root / (group + "_" + dom) / (name + "_" + dom + ".txt"), map);
-}
-
 }  // namespace
 
 TEST_CASE("discover_cases follows the VOLMAP layout deterministically") {
   const auto root = fresh_dir("discover");
-  write_cube_case(root, "G2", "b", "tet");
-  write_cube_case(root, "G1", "b", "cube");
-  write_cube_case(root, "G1", "a", "star");
-  write_cube_case(root, "G1", "a", "cube");
-  write_file(root / "G1" / "c.mesh", "");          // a mesh without maps: no case
-  write_file(root / "G1_cube" / "zz_cube.txt", "");  // a map without mesh: no case
-  write_file(root / "notes" / "x.mesh", "");         // not a group folder
+  volmap_test::write_cube_case(root, "G2", "b", "tet");
+  volmap_test::write_cube_case(root, "G1", "b", "cube");
+  volmap_test::write_cube_case(root, "G1", "a", "star");
+  volmap_test::write_cube_case(root, "G1", "a", "cube");
+  volmap_test::write_file(root / "G1" / "c.mesh", "");          // a mesh without maps: no case
+  volmap_test::write_file(root / "G1_cube" / "zz_cube.txt", "");  // a map without mesh: no case
+  volmap_test::write_file(root / "notes" / "x.mesh", "");         // not a group folder
   const auto all = volmap::discover_cases(root.string());
   REQUIRE(all.size() == 4);
   CHECK(all[0].id() == "G1/a_cube");
@@ -117,11 +88,11 @@ TEST_CASE("run_benchmark records crashing and hanging candidates, appends, resum
     return;
   }
   const auto root = fresh_dir("runner");
-  for (const char* n : {"ok", "crash", "hang"}) write_cube_case(root / "data", "G1", n, "cube");
+  for (const char* n : {"ok", "crash", "hang"}) volmap_test::write_cube_case(root / "data", "G1", n, "cube");
   // A candidate that copies the input (the identity map is valid for an identity boundary map),
   // crashes on "crash" and hangs on "hang".
   const auto candidate = root / "candidate.sh";
-  write_file(candidate,
+  volmap_test::write_file(candidate,
              "#!/bin/sh\ncase \"$1\" in *crash*) kill -SEGV $$;; *hang*) sleep 60;; esac\ncp \"$1\" \"$3\"\n", true);
   volmap::RunOptions options;
   options.out_dir = (root / "out").string();

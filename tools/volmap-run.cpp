@@ -1,6 +1,6 @@
 // volmap-run — run a mapping method over a VOLMAP dataset folder, and report on the results.
 //   volmap-run <dataset_dir> --method <tutte3d|map|tlc|executable> [--groups G1,G2] [--domains cube,tet]
-//              [--jobs N] [--timeout s] [--out results_dir] [--resume] [--keep-outputs] [--json]
+//              [--meshes bone,duck] [--jobs N] [--timeout s] [--out results_dir] [--resume] [--keep-outputs] [--json]
 //   volmap-run report <results_dir> [--compare other_results_dir] [-o report.html] [--csv summary.csv]
 //   volmap-run list <dataset_dir> [--groups ..] [--domains ..]          (case ids, one per line)
 //   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
@@ -70,7 +70,7 @@ std::string format_duration(double s) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Run a volume-mapping method over a VOLMAP dataset folder; `report` renders results.", "volmap-run"};
-  std::string dataset, method, groups, domains, out = "volmap-results";
+  std::string dataset, method, groups, domains, meshes, out = "volmap-results";
   int jobs = 1;
   double timeout = 0;
   bool resume = false, keep = false, json = false;
@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "tutte3d, map, tlc, or a candidate executable (<exe> in.mesh map.txt out.mesh)");
   app.add_option("--groups", groups, "comma-separated groups, e.g. G1,G2 (default: all)");
   app.add_option("--domains", domains, "comma-separated domains among cube,tet,pyr,octa,star,sphere,pc (default: all)");
+  app.add_option("--meshes", meshes, "comma-separated mesh names, e.g. bone,duck (default: all)");
   app.add_option("--jobs,-j", jobs, "parallel cases")->check(CLI::Range(1, kMaxJobs));
   app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(CLI::NonNegativeNumber);
   app.add_option("--out", out, "results folder (results.jsonl + per-case logs)");
@@ -96,6 +97,7 @@ int main(int argc, char** argv) {
   list->add_option("dataset_dir", list_dataset, "VOLMAP layout root")->required();
   list->add_option("--groups", groups, "comma-separated groups");
   list->add_option("--domains", domains, "comma-separated domains");
+  list->add_option("--meshes", meshes, "comma-separated mesh names");
 
   auto* one = app.add_subcommand("case", "run one case and write its record as a JSON file");
   std::string case_dataset, case_id;
@@ -132,7 +134,7 @@ int main(int argc, char** argv) {
       return volmap_tools::kExitOk;
     }
     if (list->parsed()) {
-      for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains)))
+      for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains), split_list(meshes)))
         std::cout << c.id() << "\n";
       return volmap_tools::kExitOk;
     }
@@ -157,7 +159,7 @@ int main(int argc, char** argv) {
     if (dataset.empty() || method.empty())
       throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "usage: volmap-run <dataset_dir> --method <name|exe> (see --help)");
 
-    const auto cases = volmap::discover_cases(dataset, split_list(groups), split_list(domains));
+    const auto cases = volmap::discover_cases(dataset, split_list(groups), split_list(domains), split_list(meshes));
     if (cases.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, dataset, 0, "no cases found in the VOLMAP layout");
     volmap::RunOptions options;
     options.out_dir = out;

@@ -28,7 +28,8 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
 }  // namespace
 
 std::vector<BenchmarkCase> discover_cases(const std::string& root, const std::vector<std::string>& groups,
-                                          const std::vector<std::string>& domains) {
+                                          const std::vector<std::string>& domains,
+                                          const std::vector<std::string>& meshes) {
   std::error_code ec;
   if (!fs::is_directory(root, ec)) throw_io(root, "dataset folder does not exist");
   for (const auto& d : domains)
@@ -47,11 +48,13 @@ std::vector<BenchmarkCase> discover_cases(const std::string& root, const std::ve
 
   std::vector<BenchmarkCase> cases;
   for (const auto& [number, group] : group_dirs) {
-    std::vector<std::string> meshes;
+    std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(fs::path(root) / group, ec))
-      if (entry.is_regular_file() && entry.path().extension() == ".mesh") meshes.push_back(entry.path().stem().string());
-    std::sort(meshes.begin(), meshes.end());
-    for (const auto& mesh : meshes)
+      if (entry.is_regular_file() && entry.path().extension() == ".mesh" &&
+          (meshes.empty() || contains(meshes, entry.path().stem().string())))
+        names.push_back(entry.path().stem().string());
+    std::sort(names.begin(), names.end());
+    for (const auto& mesh : names)
       for (const auto& dom : volmap_domain_suffixes()) {
         if (!domains.empty() && !contains(domains, dom)) continue;
         const fs::path map = fs::path(root) / (group + "_" + dom) / (mesh + "_" + dom + ".txt");

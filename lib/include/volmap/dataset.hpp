@@ -21,9 +21,10 @@ struct BenchmarkCase {
 // The VOLMAP domain suffixes in canonical order.
 const std::vector<std::string>& volmap_domain_suffixes();
 
-// All cases under root. Empty `groups`/`domains` mean all. Throws Error(Io) when root is not a
-// folder, Error(BadInput) for an unknown domain name in `domains`.
+// All cases under root. Empty `groups`/`domains`/`meshes` mean all. Throws Error(Io) when root is
+// not a folder, Error(BadInput) for an unknown domain name in `domains`.
 std::vector<BenchmarkCase> discover_cases(const std::string& root, const std::vector<std::string>& groups = {},
-                                          const std::vector<std::string>& domains = {});
+                                          const std::vector<std::string>& domains = {},
+                                          const std::vector<std::string>& meshes = {});
 
 }  // namespace volmap
