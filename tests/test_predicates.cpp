@@ -7,6 +7,9 @@
 #include "../predicates/testing/oracle.hpp"
 
 #include <cmath>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -316,6 +319,16 @@ TEST_CASE("non-finite input: checked variants throw, batch reports !ok") {
   const std::uint32_t bad_tet[4] = {1, 2, 3, 4};
   r = volmap::orient3d_tets(xyz.data(), 4, bad_tet, 1, nullptr);
   CHECK_FALSE(r.ok);
+#if defined(__SSE2__)
+  // FTZ/DAZ mode (what -ffast-math sets at startup) is refused by the batch path
+  const unsigned csr = _mm_getcsr();
+  _mm_setcsr(csr | 0x8040u);
+  r = volmap::orient3d_tets(xyz.data(), 4, tet, 1, &sign);
+  _mm_setcsr(csr);
+  CHECK_FALSE(r.ok);
+  r = volmap::orient3d_tets(xyz.data(), 4, tet, 1, &sign);
+  CHECK(r.ok);
+#endif
 }
 
 TEST_CASE("batch orient3d_tets: Kuhn grid, flattened region, far-away copy, cross-checked") {

@@ -183,7 +183,8 @@ void run_all(Runner& r) {
 
 int main(int argc, char** argv) {
   CLI::App app{"volmap-predicates-selftest: checks the exact predicates on built-in hard cases against a GMP "
-               "oracle and compares with a naive double determinant. Exit 0 iff every volmap sign is exact."};
+               "oracle and compares with a naive double determinant. Exit 0 iff every volmap sign is exact.",
+               "volmap-predicates-selftest"};
   bool json = false;
   app.add_flag("--json", json, "print one JSON object instead of the table");
   return volmap_tools::run_tool(

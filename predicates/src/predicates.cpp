@@ -533,6 +533,11 @@ TetSignCounts fail(const char* reason) {
 
 TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
                             std::size_t num_tets, std::int8_t* signs) {
+#if defined(__SSE2__)
+  // Flush-to-zero / denormals-are-zero (MXCSR bits 15 and 6, set e.g. by linking with -ffast-math)
+  // break the underflow reasoning of every layer: refuse instead of returning unproven signs.
+  if (_mm_getcsr() & 0x8040u) return fail("FTZ/DAZ floating-point mode is active (unsupported)");
+#endif
   const MeshCensus mesh = census(xyz, num_vertices);
   if (!mesh.finite) return fail("non-finite vertex coordinate");
   // L1 is valid when the mesh is safe and every extent is in [1e-97, 1e102) (CGAL's guards).

@@ -13,7 +13,8 @@
 // Preconditions of the unchecked scalar functions: all coordinates finite. The *_checked variants
 // and the batch entry point report non-finite input as an error instead of returning a sign.
 // Environment precondition: IEEE binary64 with round-to-nearest and gradual underflow, i.e. the
-// default floating-point environment (no FTZ/DAZ, which linking with -ffast-math would set).
+// default floating-point environment (no FTZ/DAZ, which linking with -ffast-math would set;
+// orient3d_tets detects FTZ/DAZ on x86 and reports !ok).
 #pragma once
 
 #include <cstddef>
