@@ -255,7 +255,8 @@ void VtuReader::array_values(const Tag& tag, std::size_t content_begin, std::siz
     if (content_end == std::string::npos) fail(tag.begin, "unterminated DataArray");
     if (expected / 2 > content_end - content_begin) fail(tag.begin, "DataArray: fewer values than declared");
     io_detail::Tokenizer tok(data_.data() + content_begin, data_.data() + content_end, false);
-    for (std::size_t k = 1; k < line_at(content_begin); ++k) tok.count_line();
+    const std::size_t first_line = line_at(content_begin);
+    for (std::size_t k = 1; k < first_line; ++k) tok.count_line();
     if (as_double) as_double->resize(expected);
     if (as_int) as_int->resize(expected);
     io_detail::Token t;
