@@ -20,15 +20,16 @@ echo "== 1. exact predicates: validator on built-in hard cases"
 
 if [ -n "${2:-}" ]; then
   DATASET=$(cd "$2" && pwd)
-  GROUPS=(--groups "${VOLMAP_DEMO_GROUPS:-G1}")
-  echo "== 2. dataset: $DATASET (${GROUPS[1]})"
+  GROUP_ARGS=(--groups "${VOLMAP_DEMO_GROUPS:-G1}")
+  echo "== 2. dataset: $DATASET (${GROUP_ARGS[1]})"
 else
   DATASET=$DEMO/dataset
-  GROUPS=()
+  GROUP_ARGS=()
   echo "== 2. dataset: built-in shapes -> tet meshes -> boundary maps to all domains"
   rm -rf "$DEMO/surfaces" "$DATASET"
   "$BIN/volmap-shapes" "$DEMO/surfaces" --subdivisions 3 >/dev/null
-  "$BIN/volmap-dataset" "$DEMO/surfaces" "$DATASET" --group G1 --jobs "$JOBS" --domains cube,tet,pyr,octa,star
+  "$BIN/volmap-dataset" "$DEMO/surfaces" "$DATASET" --group G1 --jobs "$JOBS" --domains cube,tet,pyr,octa,star \
+    --max-volume 0.002
 fi
 
 echo "== 3. volume maps with the exact check and VOLMAP metrics"
@@ -36,7 +37,7 @@ METHODS=(tutte3d)
 [ -x "$BIN/volmap-map" ] && METHODS+=(map)
 for m in "${METHODS[@]}"; do
   rm -rf "$DEMO/results-$m"
-  "$BIN/volmap-run" "$DATASET" "${GROUPS[@]}" --method "$m" --jobs "$JOBS" --timeout 300 --out "$DEMO/results-$m"
+  "$BIN/volmap-run" "$DATASET" "${GROUP_ARGS[@]}" --method "$m" --jobs "$JOBS" --timeout 300 --out "$DEMO/results-$m"
 done
 
 echo "== 4. report"

@@ -2,15 +2,17 @@
 //   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star]
 //                  [--jobs N] [--quality 1.414] [--max-volume V] [--json]
 // For each surface (.obj .off .stl .ply): tetrahedralize (which checks the surface first), run the
-// tet-mesh checks, compute every domain's boundary map, re-running all domains on the refined mesh
-// until no domain refines any more (so ONE mesh serves all domains, as VOLMAP does), verify every map
+// tet-mesh checks, compute every domain's boundary map on ONE mesh (as VOLMAP does), verify every map
 // exactly, then publish <dataset>/<group>/<name>.mesh and <group>_<dom>/<name>_<dom>.txt. Every step
 // is one of the volmap-* tools run as a child process; a surface that fails any step is skipped and
-// the reason goes to <dataset>/<group>_log.txt.
+// the reason goes to <dataset>/<group>_log.txt. Maps made before a later domain refines the mesh are
+// carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
 #include "tool_common.hpp"
 
 #include <volmap/atomic_file.hpp>
 #include <volmap/dataset.hpp>
+#include <volmap/io.hpp>
+#include <volmap/map_extension.hpp>
 #include <volmap/process.hpp>
 
 #include <algorithm>
@@ -87,37 +89,44 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check"); !e.empty())
     return outcome.reason = e, outcome;
 
-  // Fixed point: a pass maps every domain on the current mesh; a domain that had to refine
-  // replaces the mesh, and the pass restarts until one full pass refines nothing.
+  // One mesh for every domain: map the domains in turn; when a domain refines the mesh (midpoint
+  // splits of boundary edges), the maps computed so far are carried onto the refined mesh by midpoint
+  // interpolation (map_extension.hpp). Then every map is verified exactly; a map that fails (e.g. a
+  // carried sphere map, whose midpoints leave the sphere) is recomputed on the final mesh, which may
+  // refine again: repeat, a bounded number of times.
+  auto map_path = [&](const std::string& dom) { return work / (outcome.name + "_" + dom + ".txt"); };
+  std::vector<std::string> pending = domains;
   constexpr int kMaxPasses = 6;
-  bool stable = false;
-  for (int pass = 0; pass < kMaxPasses && !stable; ++pass) {
+  for (int pass = 0; pass < kMaxPasses && !pending.empty(); ++pass) {
     outcome.refinement_passes = pass + 1;
-    stable = true;
-    for (const auto& dom : domains) {
-      const fs::path map = work / (outcome.name + "_" + dom + ".txt");
+    for (const auto& dom : pending) {
       const fs::path refined = work / "refined.mesh";
       fs::remove(refined);
-      if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map.string(), "--refined",
-                             refined.string()},
+      const std::size_t old_vertices = volmap::read_tet_mesh(mesh.string()).num_vertices();
+      if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map_path(dom).string(),
+                             "--refined", refined.string()},
                             work, "surface-map-" + dom);
           !e.empty())
         return outcome.reason = e, outcome;
-      if (fs::exists(refined)) {
-        fs::rename(refined, mesh);
-        stable = false;
-        break;  // maps computed so far are on the old mesh: start a new pass
+      if (!fs::exists(refined)) continue;
+      const auto refined_mesh = volmap::read_tet_mesh(refined.string());
+      for (const auto& other : domains) {
+        if (other == dom || !fs::exists(map_path(other))) continue;
+        const auto carried = volmap::extend_boundary_map_over_splits(volmap::read_boundary_map(map_path(other).string()),
+                                                                     refined_mesh, old_vertices);
+        volmap::write_boundary_map(map_path(other).string(), carried);
       }
+      fs::rename(refined, mesh);
+    }
+    pending.clear();
+    for (const auto& dom : domains) {
+      if (!run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map_path(dom).string(), "--domain", dom},
+                    work, "surface-map-check-" + dom)
+               .empty())
+        pending.push_back(dom);
     }
   }
-  if (!stable) return outcome.reason = "refinement did not settle in " + std::to_string(kMaxPasses) + " passes", outcome;
-  for (const auto& dom : domains) {
-    const fs::path map = work / (outcome.name + "_" + dom + ".txt");
-    if (auto e = run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map.string(), "--domain", dom},
-                          work, "surface-map-check-" + dom);
-        !e.empty())
-      return outcome.reason = e, outcome;
-  }
+  if (!pending.empty()) return outcome.reason = "maps did not verify after " + std::to_string(kMaxPasses) + " passes", outcome;
   if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check-final");
       !e.empty())
     return outcome.reason = e, outcome;
@@ -181,7 +190,12 @@ int main(int argc, char** argv) {
     std::mutex print;
     auto worker = [&] {
       for (std::size_t i; (i = next++) < surfaces.size();) {
-        outcomes[i] = process_surface(surfaces[i], dataset_dir, group, domains, quality, max_volume);
+        try {
+          outcomes[i] = process_surface(surfaces[i], dataset_dir, group, domains, quality, max_volume);
+        } catch (const std::exception& e) {  // one bad surface never stops the others
+          outcomes[i].name = surfaces[i].stem().string();
+          outcomes[i].reason = e.what();
+        }
         if (!json) {
           std::lock_guard<std::mutex> lock(print);
           std::cerr << outcomes[i].name << ": " << (outcomes[i].ok ? "added" : "skipped: " + outcomes[i].reason) << "\n";
