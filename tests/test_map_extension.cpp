@@ -33,7 +33,7 @@ TEST_CASE("identity map extends to the identity across repeated midpoint splits"
   mesh.split_edge(a, v, quarter);  // the new vertex sits between a and v: a is no longer v's neighbour
   const auto refined = mesh.to_data();
   REQUIRE(refined.num_vertices() == grid.num_vertices() + 2);
-  const auto extended = volmap::extend_boundary_map_over_splits(map, refined, grid.num_vertices());
+  const auto extended = volmap::extend_boundary_map_over_splits(map, grid, refined);
   CHECK(extended.size() == map.size() + 2);
   for (std::size_t i = 0; i < extended.size(); ++i)
     for (int k = 0; k < 3; ++k) CHECK(extended.xyz[3 * i + k] == refined.xyz[3 * extended.vids[i] + k]);
@@ -41,5 +41,5 @@ TEST_CASE("identity map extends to the identity across repeated midpoint splits"
   // A new boundary vertex that is not a midpoint is refused.
   auto moved = refined;
   moved.xyz[3 * (refined.num_vertices() - 1)] += 1e-3;
-  CHECK_THROWS_AS(volmap::extend_boundary_map_over_splits(map, moved, grid.num_vertices()), volmap::Error);
+  CHECK_THROWS_AS(volmap::extend_boundary_map_over_splits(map, grid, moved), volmap::Error);
 }

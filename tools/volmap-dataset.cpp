@@ -102,7 +102,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
     for (const auto& dom : pending) {
       const fs::path refined = work / "refined.mesh";
       fs::remove(refined);
-      const std::size_t old_vertices = volmap::read_tet_mesh(mesh.string()).num_vertices();
+      const auto before = volmap::read_tet_mesh(mesh.string());
       if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map_path(dom).string(),
                              "--refined", refined.string()},
                             work, "surface-map-" + dom);
@@ -113,7 +113,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       for (const auto& other : domains) {
         if (other == dom || !fs::exists(map_path(other))) continue;
         const auto carried = volmap::extend_boundary_map_over_splits(volmap::read_boundary_map(map_path(other).string()),
-                                                                     refined_mesh, old_vertices);
+                                                                     before, refined_mesh);
         volmap::write_boundary_map(map_path(other).string(), carried);
       }
       fs::rename(refined, mesh);
