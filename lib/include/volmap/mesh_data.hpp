@@ -25,6 +25,7 @@ struct TetMeshData {
 struct BoundaryMap {
   std::vector<std::uint32_t> vids;  // 0-based vertex ids, in file order
   std::vector<double> xyz;          // 3 * vids.size()
+  std::vector<std::uint32_t> source_lines;  // 1-based file line of each entry (empty when not read from a file)
   std::size_t size() const { return vids.size(); }
 };
 
