@@ -400,7 +400,9 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     obj.has_deadline = true;
     obj.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time_limit_seconds));
   }
-  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchNocedalWright> solver(lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE));
+  // LBFGSpp keeps a reference to its parameters: they must outlive the solver.
+  const LBFGSpp::LBFGSParam<double> param = lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE);
+  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchNocedalWright> solver(param);
   double eps = 1.0;
   Eigen::VectorXd grad(x.size());
   try {
@@ -473,7 +475,8 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
       best_energy = e;
     }
   };
-  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(lbfgs_param(max_iterations, 1e-6, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO));
+  const LBFGSpp::LBFGSParam<double> param = lbfgs_param(max_iterations, 1e-6, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO);
+  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
   double fx = 0;
   try {
     result.rounds = solver.minimize(obj, x, fx);
