@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
-BUILD=${1:-$ROOT/build}
+BUILD=$(realpath -m "${1:-$ROOT/build}")  # absolute: reused as CMAKE_PREFIX_PATH below
 JOBS=${VOLMAP_JOBS:-$(nproc)}
 
 echo "== predicates under -ffp-contract=fast -march=native for the rest of the code"

@@ -1,0 +1,376 @@
+// Google Benchmark of the exact predicates (ns per call / per tet), side by side with a naive double
+// determinant (not robust) and, when CGAL is found, CGAL Epick (filtered exact predicates).
+// Sign conventions: volmap = Shewchuk's. CGAL::orientation(p,q,r,s) = −orient3d(p,q,r,s); CGAL's
+// side_of_oriented_circle agrees with incircle, side_of_oriented_sphere = −insphere (both checked at
+// start on the near-degenerate sets).
+// Inputs: 4096 precomputed tuples per data set, cycled (in cache). Batch: indexed Kuhn grid of
+// 56³·6 = 1 053 696 tets (uint32 ids, xyz interleaved), clean, with half of it flattened onto z = c
+// (zero-column shortcut) and with half of it flattened onto a tilted plane (exact L3 path).
+#include <benchmark/benchmark.h>
+#include <volmap/predicates.hpp>
+
+#include "../predicates/testing/oracle.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+#ifdef VOLMAP_HAVE_CGAL
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+#endif
+
+namespace or_ = volmap_oracle;
+
+namespace {
+
+constexpr int kTuples = 4096;
+
+struct Tuples {
+  std::vector<double> pts;  // kTuples × 5 points × 3 coordinates (2D uses the first two)
+  const double* p(int t, int i) const { return &pts[(std::size_t(t) * 5 + i) * 3]; }
+};
+
+enum class Set { Random, NearDegenerate };
+
+Tuples make_tuples(Set set, int dim, int npts) {
+  Tuples r;
+  r.pts.resize(std::size_t(kTuples) * 15);
+  std::mt19937_64 rng(set == Set::Random ? 11 : 12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int t = 0; t < kTuples; ++t) {
+    double* q[5];
+    for (int i = 0; i < 5; ++i) q[i] = &r.pts[(std::size_t(t) * 5 + i) * 3];
+    if (set == Set::Random) {
+      for (int i = 0; i < 5; ++i)
+        for (int k = 0; k < 3; ++k) q[i][k] = u(rng);
+    } else if (dim == 2 && npts == 3) {
+      for (int k = 0; k < 2; ++k) q[0][k] = u(rng), q[1][k] = u(rng);
+      const double s = u(rng);
+      for (int k = 0; k < 2; ++k) q[2][k] = q[0][k] + s * (q[1][k] - q[0][k]);
+    } else if (dim == 3 && npts == 4) {
+      or_::near_coplanar(rng, q[0], q[1], q[2], q[3]);
+    } else if (dim == 2) {
+      or_::near_cocircular(rng, q[0], q[1], q[2], q[3]);
+    } else {
+      or_::near_cospherical(rng, q[0], q[1], q[2], q[3], q[4]);
+    }
+  }
+  return r;
+}
+
+const Tuples& tuples(Set set, int dim, int npts) {
+  static Tuples cache[2][6];
+  const int slot = (dim - 2) * 3 + (npts - 3);
+  Tuples& t = cache[int(set)][slot];
+  if (t.pts.empty()) t = make_tuples(set, dim, npts);
+  return t;
+}
+
+// Naive determinants kept out of line so that every contender pays one call.
+__attribute__((noinline)) double naive_o2(const double* a, const double* b, const double* c) {
+  return or_::naive_orient2d(a, b, c);
+}
+__attribute__((noinline)) double naive_o3(const double* a, const double* b, const double* c, const double* d) {
+  return or_::naive_orient3d(a, b, c, d);
+}
+__attribute__((noinline)) double naive_ic(const double* a, const double* b, const double* c, const double* d) {
+  return or_::naive_incircle(a, b, c, d);
+}
+__attribute__((noinline)) double naive_is(const double* a, const double* b, const double* c, const double* d,
+                                          const double* e) {
+  return or_::naive_insphere(a, b, c, d, e);
+}
+
+template <class F>
+void run_scalar(benchmark::State& state, const Tuples& t, F f) {
+  int i = 0;
+  long acc = 0;
+  for (auto _ : state) {
+    acc += f(t, i);
+    i = (i + 1) & (kTuples - 1);
+  }
+  benchmark::DoNotOptimize(acc);
+  state.SetItemsProcessed(state.iterations());
+}
+
+#define VOLMAP_SCALAR_BENCH(name, set, dim, npts, expr)                              \
+  void name(benchmark::State& state) {                                              \
+    const Tuples& tup = tuples(set, dim, npts);                                     \
+    run_scalar(state, tup, [](const Tuples& t, int i) { return long(expr); });      \
+  }                                                                                 \
+  BENCHMARK(name)
+
+#define P(k) t.p(i, k)
+VOLMAP_SCALAR_BENCH(orient2d_random_naive, Set::Random, 2, 3, or_::naive_sign(naive_o2(P(0), P(1), P(2))));
+VOLMAP_SCALAR_BENCH(orient2d_random_volmap, Set::Random, 2, 3, volmap::orient2d(P(0), P(1), P(2)));
+VOLMAP_SCALAR_BENCH(orient2d_neardeg_naive, Set::NearDegenerate, 2, 3, or_::naive_sign(naive_o2(P(0), P(1), P(2))));
+VOLMAP_SCALAR_BENCH(orient2d_neardeg_volmap, Set::NearDegenerate, 2, 3, volmap::orient2d(P(0), P(1), P(2)));
+VOLMAP_SCALAR_BENCH(orient3d_random_naive, Set::Random, 3, 4, or_::naive_sign(naive_o3(P(0), P(1), P(2), P(3))));
+VOLMAP_SCALAR_BENCH(orient3d_random_volmap, Set::Random, 3, 4, volmap::orient3d(P(0), P(1), P(2), P(3)));
+VOLMAP_SCALAR_BENCH(orient3d_neardeg_naive, Set::NearDegenerate, 3, 4,
+                    or_::naive_sign(naive_o3(P(0), P(1), P(2), P(3))));
+VOLMAP_SCALAR_BENCH(orient3d_neardeg_volmap, Set::NearDegenerate, 3, 4, volmap::orient3d(P(0), P(1), P(2), P(3)));
+VOLMAP_SCALAR_BENCH(incircle_random_naive, Set::Random, 2, 4, or_::naive_sign(naive_ic(P(0), P(1), P(2), P(3))));
+VOLMAP_SCALAR_BENCH(incircle_random_volmap, Set::Random, 2, 4, volmap::incircle(P(0), P(1), P(2), P(3)));
+VOLMAP_SCALAR_BENCH(incircle_neardeg_naive, Set::NearDegenerate, 2, 4,
+                    or_::naive_sign(naive_ic(P(0), P(1), P(2), P(3))));
+VOLMAP_SCALAR_BENCH(incircle_neardeg_volmap, Set::NearDegenerate, 2, 4, volmap::incircle(P(0), P(1), P(2), P(3)));
+VOLMAP_SCALAR_BENCH(insphere_random_naive, Set::Random, 3, 5, or_::naive_sign(naive_is(P(0), P(1), P(2), P(3), P(4))));
+VOLMAP_SCALAR_BENCH(insphere_random_volmap, Set::Random, 3, 5, volmap::insphere(P(0), P(1), P(2), P(3), P(4)));
+VOLMAP_SCALAR_BENCH(insphere_neardeg_naive, Set::NearDegenerate, 3, 5,
+                    or_::naive_sign(naive_is(P(0), P(1), P(2), P(3), P(4))));
+VOLMAP_SCALAR_BENCH(insphere_neardeg_volmap, Set::NearDegenerate, 3, 5,
+                    volmap::insphere(P(0), P(1), P(2), P(3), P(4)));
+
+#ifdef VOLMAP_HAVE_CGAL
+// CGAL points prebuilt per data set (construction is not timed).
+struct CgalTuples {
+  std::vector<Epick::Point_2> p2;
+  std::vector<Epick::Point_3> p3;
+};
+const CgalTuples& cgal_tuples(Set set, int dim, int npts) {
+  static CgalTuples cache[2][6];
+  CgalTuples& c = cache[int(set)][(dim - 2) * 3 + (npts - 3)];
+  if (c.p2.empty() && c.p3.empty()) {
+    const Tuples& t = tuples(set, dim, npts);
+    for (int i = 0; i < kTuples; ++i)
+      for (int k = 0; k < 5; ++k) {
+        const double* q = t.p(i, k);
+        if (dim == 2) c.p2.emplace_back(q[0], q[1]);
+        else c.p3.emplace_back(q[0], q[1], q[2]);
+      }
+  }
+  return c;
+}
+#define CGAL_BENCH(name, set, dim, npts, expr)                                              \
+  void name(benchmark::State& state) {                                                     \
+    const CgalTuples& c = cgal_tuples(set, dim, npts);                                     \
+    int i = 0;                                                                             \
+    long acc = 0;                                                                          \
+    for (auto _ : state) {                                                                 \
+      acc += long(expr);                                                                   \
+      i = (i + 1) & (kTuples - 1);                                                         \
+    }                                                                                      \
+    benchmark::DoNotOptimize(acc);                                                         \
+    state.SetItemsProcessed(state.iterations());                                           \
+  }                                                                                        \
+  BENCHMARK(name)
+#define C2(k) c.p2[std::size_t(i) * 5 + k]
+#define C3(k) c.p3[std::size_t(i) * 5 + k]
+CGAL_BENCH(orient2d_random_cgal_epick, Set::Random, 2, 3, CGAL::orientation(C2(0), C2(1), C2(2)));
+CGAL_BENCH(orient2d_neardeg_cgal_epick, Set::NearDegenerate, 2, 3, CGAL::orientation(C2(0), C2(1), C2(2)));
+CGAL_BENCH(orient3d_random_cgal_epick, Set::Random, 3, 4, CGAL::orientation(C3(0), C3(1), C3(2), C3(3)));
+CGAL_BENCH(orient3d_neardeg_cgal_epick, Set::NearDegenerate, 3, 4, CGAL::orientation(C3(0), C3(1), C3(2), C3(3)));
+CGAL_BENCH(incircle_random_cgal_epick, Set::Random, 2, 4, CGAL::side_of_oriented_circle(C2(0), C2(1), C2(2), C2(3)));
+CGAL_BENCH(incircle_neardeg_cgal_epick, Set::NearDegenerate, 2, 4,
+           CGAL::side_of_oriented_circle(C2(0), C2(1), C2(2), C2(3)));
+CGAL_BENCH(insphere_random_cgal_epick, Set::Random, 3, 5,
+           CGAL::side_of_oriented_sphere(C3(0), C3(1), C3(2), C3(3), C3(4)));
+CGAL_BENCH(insphere_neardeg_cgal_epick, Set::NearDegenerate, 3, 5,
+           CGAL::side_of_oriented_sphere(C3(0), C3(1), C3(2), C3(3), C3(4)));
+#endif
+
+// ---- batch: indexed Kuhn grid -------------------------------------------------------------------
+
+struct Mesh {
+  std::vector<double> xyz;
+  std::vector<std::uint32_t> tets;
+  std::size_t degenerate = 0;  // exactly flat tets
+};
+
+// n³ cubes of edge 2^-6 (exact), 6 positively oriented tets per cube (Kuhn / Freudenthal).
+Mesh kuhn(int n) {
+  Mesh m;
+  const int s = n + 1;
+  const double h = 1.0 / 64;
+  m.xyz.reserve(std::size_t(s) * s * s * 3);
+  for (int k = 0; k < s; ++k)
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < s; ++i) {
+        m.xyz.push_back(i * h);
+        m.xyz.push_back(j * h);
+        m.xyz.push_back(k * h);
+      }
+  auto id = [s](int i, int j, int k) { return std::uint32_t((k * s + j) * s + i); };
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  m.tets.reserve(std::size_t(n) * n * n * 24);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::uint32_t v[4];
+          v[0] = id(c[0], c[1], c[2]);
+          for (int q = 0; q < 3; ++q) {
+            c[p[q]] += 1;
+            v[q + 1] = id(c[0], c[1], c[2]);
+          }
+          const bool even = (p[0] == 0 && p[1] == 1) || (p[0] == 1 && p[1] == 2) || (p[0] == 2 && p[1] == 0);
+          if (even) std::swap(v[0], v[1]);
+          m.tets.insert(m.tets.end(), v, v + 4);
+        }
+  return m;
+}
+
+constexpr int kGrid = 56;  // 56³·6 = 1 053 696 tets
+
+const Mesh& mesh(int variant) {  // 0 clean, 1 half flattened onto z = c, 2 half onto a tilted plane
+  static Mesh cache[3];
+  Mesh& m = cache[variant];
+  if (m.tets.empty()) {
+    m = kuhn(kGrid);
+    const double zc = (kGrid / 2) / 64.0;
+    for (std::size_t v = 0; v < m.xyz.size() / 3; ++v) {
+      double* p = &m.xyz[3 * v];
+      if (variant == 1 && p[2] > zc) p[2] = zc;
+      // tilted plane z = zc + (x + y)/4: exact on the 2^-6 grid; every vertex above it is projected
+      if (variant == 2 && p[2] > zc + (p[0] + p[1]) / 4) p[2] = zc + (p[0] + p[1]) / 4;
+    }
+    const auto r = volmap::orient3d_tets(m.xyz.data(), m.xyz.size() / 3, m.tets.data(), m.tets.size() / 4, nullptr);
+    m.degenerate = r.zero;
+  }
+  return m;
+}
+
+void batch_volmap(benchmark::State& state) {
+  const Mesh& m = mesh(int(state.range(0)));
+  const std::size_t nt = m.tets.size() / 4;
+  std::vector<std::int8_t> signs(nt);
+  volmap::TetSignCounts r;
+  for (auto _ : state) {
+    r = volmap::orient3d_tets(m.xyz.data(), m.xyz.size() / 3, m.tets.data(), nt, signs.data());
+    benchmark::DoNotOptimize(signs.data());
+  }
+  state.counters["tets"] = double(nt);
+  state.counters["zero_tets"] = double(r.zero);
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(double(nt), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
+}
+BENCHMARK(batch_volmap)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void batch_naive(benchmark::State& state) {  // same loop, plain double determinant (not robust)
+  const Mesh& m = mesh(int(state.range(0)));
+  const std::size_t nt = m.tets.size() / 4;
+  std::vector<std::int8_t> signs(nt);
+  for (auto _ : state) {
+    const double* xyz = m.xyz.data();
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::uint32_t* v = &m.tets[4 * t];
+      const double det = or_::naive_orient3d(xyz + 3 * std::size_t(v[0]), xyz + 3 * std::size_t(v[1]),
+                                             xyz + 3 * std::size_t(v[2]), xyz + 3 * std::size_t(v[3]));
+      signs[t] = std::int8_t((det > 0) - (det < 0));
+    }
+    benchmark::DoNotOptimize(signs.data());
+  }
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(double(nt), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
+}
+BENCHMARK(batch_naive)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// Rational coordinates (i/56 per axis, not dyadic): the double prefilter decides; range(0) = 1 makes
+// the upper half exactly flat (z = 28/56), which goes to the homogeneous integer determinant.
+void batch_volmap_rational(benchmark::State& state) {
+  const Mesh& m = mesh(0);
+  const std::size_t nt = m.tets.size() / 4, nv = m.xyz.size() / 3;
+  std::vector<volmap::Rational> rxyz(3 * nv);
+  for (std::size_t i = 0; i < 3 * nv; ++i) {
+    long g = std::lround(m.xyz[i] * 64);
+    if (state.range(0) == 1 && i % 3 == 2 && g > kGrid / 2) g = kGrid / 2;
+    rxyz[i] = volmap::Rational(g) / kGrid;
+  }
+  std::vector<std::int8_t> signs(nt);
+  volmap::TetSignCounts r;
+  for (auto _ : state) {
+    r = volmap::orient3d_tets(rxyz.data(), nv, m.tets.data(), nt, signs.data());
+    benchmark::DoNotOptimize(signs.data());
+  }
+  state.counters["zero_tets"] = double(r.zero);
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(double(nt), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
+}
+BENCHMARK(batch_volmap_rational)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+#ifdef VOLMAP_HAVE_CGAL
+void batch_cgal_epick(benchmark::State& state) {
+  const Mesh& m = mesh(int(state.range(0)));
+  const std::size_t nt = m.tets.size() / 4, nv = m.xyz.size() / 3;
+  std::vector<Epick::Point_3> pts;
+  pts.reserve(nv);
+  for (std::size_t v = 0; v < nv; ++v) pts.emplace_back(m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
+  std::vector<std::int8_t> signs(nt);
+  for (auto _ : state) {
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::uint32_t* v = &m.tets[4 * t];
+      signs[t] = std::int8_t(-int(CGAL::orientation(pts[v[0]], pts[v[1]], pts[v[2]], pts[v[3]])));
+    }
+    benchmark::DoNotOptimize(signs.data());
+  }
+  state.counters["ns_per_tet"] =
+      benchmark::Counter(double(nt), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(nt));
+}
+BENCHMARK(batch_cgal_epick)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+#endif
+
+// Start-up sanity: the contenders agree with volmap on the data sets (wrong signs counted for naive).
+void sanity() {
+  long naive_wrong = 0;
+  const Tuples& t = tuples(Set::NearDegenerate, 3, 4);
+  for (int i = 0; i < kTuples; ++i) {
+    const int s = volmap::orient3d(t.p(i, 0), t.p(i, 1), t.p(i, 2), t.p(i, 3));
+    naive_wrong += or_::naive_sign(naive_o3(t.p(i, 0), t.p(i, 1), t.p(i, 2), t.p(i, 3))) != s;
+#ifdef VOLMAP_HAVE_CGAL
+    const auto& c = cgal_tuples(Set::NearDegenerate, 3, 4);
+    if (-int(CGAL::orientation(c.p3[i * 5], c.p3[i * 5 + 1], c.p3[i * 5 + 2], c.p3[i * 5 + 3])) != s) {
+      std::fprintf(stderr, "bench_predicates: CGAL and volmap disagree on orient3d tuple %d\n", i);
+      std::exit(1);
+    }
+#endif
+  }
+#ifdef VOLMAP_HAVE_CGAL
+  const Tuples& ic = tuples(Set::NearDegenerate, 2, 4);
+  const auto& c2 = cgal_tuples(Set::NearDegenerate, 2, 4);
+  for (int i = 0; i < kTuples; ++i)
+    if (int(CGAL::side_of_oriented_circle(c2.p2[i * 5], c2.p2[i * 5 + 1], c2.p2[i * 5 + 2], c2.p2[i * 5 + 3])) !=
+        volmap::incircle(ic.p(i, 0), ic.p(i, 1), ic.p(i, 2), ic.p(i, 3))) {
+      std::fprintf(stderr, "bench_predicates: CGAL and volmap disagree on incircle tuple %d\n", i);
+      std::exit(1);
+    }
+  const Tuples& is = tuples(Set::NearDegenerate, 3, 5);
+  const auto& c3 = cgal_tuples(Set::NearDegenerate, 3, 5);
+  for (int i = 0; i < kTuples; ++i)
+    if (-int(CGAL::side_of_oriented_sphere(c3.p3[i * 5], c3.p3[i * 5 + 1], c3.p3[i * 5 + 2], c3.p3[i * 5 + 3],
+                                          c3.p3[i * 5 + 4])) !=
+        volmap::insphere(is.p(i, 0), is.p(i, 1), is.p(i, 2), is.p(i, 3), is.p(i, 4))) {
+      std::fprintf(stderr, "bench_predicates: CGAL and volmap disagree on insphere tuple %d\n", i);
+      std::exit(1);
+    }
+#endif
+  std::printf("near-coplanar orient3d set: naive double wrong on %ld / %d; volmap%s agree\n", naive_wrong, kTuples,
+#ifdef VOLMAP_HAVE_CGAL
+              " and CGAL Epick"
+#else
+              ""
+#endif
+  );
+  for (int v = 1; v <= 2; ++v)
+    std::printf("Kuhn grid variant %d: %zu tets, %zu exactly flat\n", v, mesh(v).tets.size() / 4, mesh(v).degenerate);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  sanity();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
