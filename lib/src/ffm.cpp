@@ -401,8 +401,8 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     obj.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.time_limit_seconds));
   }
   // LBFGSpp keeps a reference to its parameters: they must outlive the solver.
-  const LBFGSpp::LBFGSParam<double> param = lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE);
-  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchNocedalWright> solver(param);
+  const LBFGSpp::LBFGSParam<double> param = lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE);
+  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
   double eps = 1.0;
   Eigen::VectorXd grad(x.size());
   try {
@@ -424,6 +424,8 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
       }
       const double E = energy.evaluate(x.data(), eps, nullptr);
       const double dmin = energy.min_det(x.data());
+      if (std::getenv("VOLMAP_FFM_DEBUG"))
+        std::fprintf(stderr, "ffm outer %d eps %.3g E_prev %.6g E %.6g dmin %.3g evals %ld\n", outer, eps, E_prev, E, dmin, obj.evaluations);
       const double sigma = std::max(1.0 - E / E_prev, 0.1);
       const double mu = (1.0 - sigma) * ffm_chi(dmin, eps);
       if (dmin < mu)
@@ -440,6 +442,8 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   } catch (const CertifiedStop&) {
     x = obj.last_x;
   } catch (const TimeStop&) {
+    if (std::getenv("VOLMAP_FFM_DEBUG"))
+      std::fprintf(stderr, "ffm time stop: evals %ld E %.6g\n", obj.evaluations, energy.evaluate(obj.last_x.data(), eps, nullptr));
     x = obj.last_x;
     result.timed_out = true;
   }
