@@ -15,6 +15,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -155,12 +156,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
 
   // §5 FFM (regular reference, then rest shape) or §6 TLC.
   if (bad > 0 && options.method == MapMethod::Ffm) {
-    for (ReferenceShape ref : {ReferenceShape::RegularTet, ReferenceShape::RestShape}) {
+    std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
+    if (std::getenv("VOLMAP_FFM_REST_FIRST")) std::swap(refs[0], refs[1]);
+    for (ReferenceShape ref : refs) {
       if (bad == 0 || out_of_time()) break;
       t0 = elapsed();
       FfmOptions fo;
       fo.reference = ref;
       fo.time_limit_seconds = remaining();
+      if (const char* it = std::getenv("VOLMAP_FFM_INNER")) fo.max_lbfgs_iterations = std::atoi(it);
       ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
       const std::string name = ref == ReferenceShape::RegularTet ? "ffm-regular" : "ffm-rest";
       bad = stage_done(name, t0);
