@@ -102,17 +102,29 @@ TetMeshData read_medit(const std::string& path) {
       Token v;
       for (std::size_t i = 0; i < nt; ++i) {
         for (int c = 0; c < 4; ++c) {
-          if (!tok.next(v)) throw_bad_input(path, tok.last_line(), truncated("Tetrahedra", i, nt));
           std::int64_t id;
-          if (!io_detail::parse_int64(v.text, id)) id = io_detail::expect_int(v, path, "tet vertex id");
+          std::uint64_t fast;
+          const int r = tok.next_unsigned(fast, v.line);
+          if (r == 1) {
+            id = static_cast<std::int64_t>(fast);
+          } else {
+            if (r == 0 || !tok.next(v)) throw_bad_input(path, tok.last_line(), truncated("Tetrahedra", i, nt));
+            if (!io_detail::parse_int64(v.text, id)) id = io_detail::expect_int(v, path, "tet vertex id");
+          }
           if (id < 1 || id > nv || id > static_cast<std::int64_t>(kMaxIndexCount))
             throw_bad_input(path, v.line, "tet " + std::to_string(i + 1) + ": vertex id " + std::to_string(id) +
                                               " outside [1," + std::to_string(have_vertices ? nv : 0) + "]");
           mesh.tets[4 * i + c] = static_cast<std::uint32_t>(id - 1);
         }
-        if (!tok.next(v)) throw_bad_input(path, tok.last_line(), truncated("Tetrahedra", i, nt));
         std::int64_t label;
-        if (!io_detail::parse_int64(v.text, label)) label = io_detail::expect_int(v, path, "tet label");
+        std::uint64_t fast;
+        const int r = tok.next_unsigned(fast, v.line);
+        if (r == 1) {
+          label = static_cast<std::int64_t>(fast);
+        } else {
+          if (r == 0 || !tok.next(v)) throw_bad_input(path, tok.last_line(), truncated("Tetrahedra", i, nt));
+          if (!io_detail::parse_int64(v.text, label)) label = io_detail::expect_int(v, path, "tet label");
+        }
         if (label < std::numeric_limits<std::int32_t>::min() || label > std::numeric_limits<std::int32_t>::max())
           throw_bad_input(path, v.line, "tet label out of 32-bit range");
         mesh.tet_labels[i] = static_cast<std::int32_t>(label);

@@ -53,6 +53,27 @@ class Tokenizer {
     last_line_ = line_;
     return true;
   }
+  // Fast path for plain unsigned decimal tokens (up to 18 digits): 1 = parsed into `value` (and the
+  // token consumed), 0 = end of input, -1 = the next token is something else (nothing consumed;
+  // callers fall back to next() and the strict parsers).
+  int next_unsigned(std::uint64_t& value, std::size_t& token_line) {
+    skip_space();
+    if (pos_ == end_) return 0;
+    const char* p = pos_;
+    std::uint64_t x = 0;
+    int digits = 0;
+    while (p != end_ && digits < 18) {
+      const unsigned d = static_cast<unsigned char>(*p) - unsigned('0');
+      if (d > 9) break;
+      x = x * 10 + d;
+      ++p, ++digits;
+    }
+    if (digits == 0 || (p != end_ && kind(*p) == kTokenChar)) return -1;
+    pos_ = p;
+    last_line_ = token_line = line_;
+    value = x;
+    return 1;
+  }
   bool peek(Token& token) {
     const char* saved = pos_;
     const std::size_t saved_line = line_;
@@ -81,6 +102,8 @@ class Tokenizer {
     if (pos_ != end_) ++pos_, ++line_;
   }
   std::size_t line() const { return line_; }
+  // Counts one more line (for callers that consumed header lines themselves).
+  void count_line() { ++line_; }
   // Line of the last token returned by next() (1 before any): where truncation errors point.
   std::size_t last_line() const { return last_line_; }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - pos_); }
