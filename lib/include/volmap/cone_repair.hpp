@@ -34,6 +34,7 @@ struct ConeRepairResult {
   std::size_t max_region = 0;         // largest |R| applied
 };
 
+// NOT IMPLEMENTED YET (the patch replacement): returns with patches = 0 and leaves the mesh alone.
 ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_boundary,
                              std::vector<double>& target_xyz, const ConeRepairOptions& options = {});
 
@@ -41,5 +42,18 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_
 // triangle; a point q is inside when orient3d(a,b,c,q) > 0 for every triangle): Chebyshev LP in
 // double, verified exactly. Returns false when no verified point was found.
 bool strict_kernel_point(const std::vector<double>& triangles, double* q);
+
+struct RelocationResult {
+  std::size_t moved = 0;            // vertex moves applied
+  int sweeps = 0;
+  std::size_t nonpositive_before = 0, nonpositive_after = 0;
+};
+
+// The cheap pre-step of §7 (B1 with R = the star of one vertex, no refinement): Gauss–Seidel sweeps
+// over the free vertices of non-positive tets, moving each to the Chebyshev centre of the strict
+// kernel of its target link when that kernel is non-empty (exactly verified). A move makes every
+// tet of the vertex's star strictly positive, so the exact non-positive count never increases.
+RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked,
+                                            std::vector<double>& target_xyz, int max_sweeps = 20);
 
 }  // namespace volmap

@@ -32,7 +32,7 @@ struct FfmOptions {
   ReferenceShape reference = ReferenceShape::RegularTet;
   double theta = 0.5;
   int max_outer_iterations = 10000;
-  int max_lbfgs_iterations = 3000;
+  int max_lbfgs_iterations = 200;  // reference: 3000; capped so ε is updated more often (measured faster on G1 bone)
   double gradient_tolerance = 1e-4;
   double time_limit_seconds = 0;  // 0 = no limit
   bool stop_when_certified = true;
