@@ -122,12 +122,23 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     throw Error(ErrorKind::BadInput, "", 0, "the source mesh has tets with orient3d <= 0 (not VOLMAP-positive)");
 
   r.source = input;
+  // Every stage is judged by the exact count; a stage that makes it worse is undone (best kept).
+  std::vector<double> best_xyz;
+  std::size_t best_bad = std::size_t(-1);
+  std::size_t best_tets = 0;
   auto stage_done = [&](const std::string& name, double t0) {
     VolumeMapStage s;
     s.name = name;
     s.seconds = elapsed() - t0;
     s.nonpositive_after = exact_nonpositive(r.target_xyz, r.source.tets);
     r.stages.push_back(s);
+    if (best_tets == r.source.num_tets() && best_bad != std::size_t(-1) && s.nonpositive_after > best_bad) {
+      r.target_xyz = best_xyz;  // undo
+      return best_bad;
+    }
+    best_xyz = r.target_xyz;
+    best_bad = s.nonpositive_after;
+    best_tets = r.source.num_tets();
     return s.nonpositive_after;
   };
 
@@ -172,6 +183,18 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     bad = stage_done("tlc", t0);
     if (bad == 0) r.certified_by = "tlc";
     link_kernel();
+    // Cascade only: a second TLC round with a 100× smaller lift from the stalled result.
+    if (bad > 0 && options.method == MapMethod::Ffm && !out_of_time()) {
+      t0 = elapsed();
+      TlcOptions t2;
+      t2.alpha_ratio = 1e-8;
+      const double rem2 = remaining();
+      t2.time_limit_seconds = rem2 > 0 ? 0.3 * rem2 : 0;
+      tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, t2);
+      bad = stage_done("tlc-small-alpha", t0);
+      if (bad == 0) r.certified_by = "tlc-small-alpha";
+      link_kernel();
+    }
   }
   // §5 FFM (regular reference, then rest shape), each followed by the link-kernel pre-step.
   if (bad > 0 && options.method == MapMethod::Ffm) {
