@@ -8,7 +8,7 @@ set -u
 bin=$1; data=$2; out=$3; shift 3
 tmp=$(mktemp -d)
 echo "mesh,domain,exit,certified,nonpositive,input_tets,output_tets,growth,seconds,certified_by" > "$out"
-for mesh in "$data"/G1/*.mesh; do
+for mesh in ${MESHES:-"$data"/G1/*.mesh}; do
   name=$(basename "$mesh" .mesh)
   for dom in cube tet pyr octa star; do
     map="$data/G1_$dom/${name}_$dom.txt"
