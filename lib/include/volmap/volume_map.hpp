@@ -1,9 +1,12 @@
 // volmap/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
-// Pipeline: exact feasibility analysis (§3) → B0 chord splitting of blocking chords (§4, when
-// refinement is allowed) → Tutte 3D initialisation (§2) → FFM untangling with regular then rest
-// reference shapes (§5), or TLC (§6) → B1 cone repair of the remaining clusters (§7, when refinement
-// is allowed) → validity-preserving quality pass (§5). A stage's result counts only when the exact
-// check (orient3d > 0 on every tet, on the doubles returned) passes.
+// Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
+// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2) → TLC (§6; the whole method with
+// MapMethod::Tlc) → [cascade only] link-kernel relocation (§7 pre-step) → TLC with alpha 1e-8 →
+// FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation →
+// B1 cone repair (§7: NOT implemented yet, a no-op) → validity-preserving quality pass (§5).
+// Each stage is judged by the exact count of non-positive tets and undone when it makes it worse.
+// A result is certified only when the exact check (orient3d > 0 on every tet, on the doubles
+// returned) passes.
 // Conventions: flat TetMeshData, VOLMAP-positive source tets; boundary vertices of the result are
 // bit-identical to the map's doubles; with refinement the source is refined only in the interior,
 // original vertex ids 0..nv−1 are kept and new vertices/tets appended.
