@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Table of volmap-map over the 100 G1 pairs (20 meshes × cube tet pyr octa star), one line per pair.
+# Usage: bench/run_map_g1.sh <build/bin> <data/volmap> <out.csv> [extra volmap-map args...]
+#   e.g. bench/run_map_g1.sh build/bin ../shared/data/volmap /tmp/g1_ffm.csv --threads 1 --time-limit 60 --no-refine
+#        bench/run_map_g1.sh build/bin ../shared/data/volmap /tmp/g1_tlc.csv --threads 1 --time-limit 60 --method tlc
+# Summarise with bench/summarise_map_g1.py <out.csv>.
+#
+# Measured 2026-11-23 on the shared, heavily loaded 2-core machine (load ~12), --threads 1
+# --time-limit 20 --no-refine --no-quality (wall-clock budget; B1 refinement not implemented):
+#   domain pairs certified  time med/max (s)
+#   cube     20     12        2.81 / 20.08
+#   tet      20     12        4.22 / 20.10
+#   pyr      20     14        3.30 / 20.06
+#   octa     20     12        4.94 / 20.07
+#   star     20      6       20.02 / 20.10
+#   all     100     56        6.37 / 20.10   (growth 0 everywhere; 53 certified by the TLC stage)
+# Re-running the 22 failures with <= 13 bad tets at --time-limit 60 certified 9 more (65/100).
+set -u
+bin=$1; data=$2; out=$3; shift 3
+tmp=$(mktemp -d)
+echo "mesh,domain,exit,certified,nonpositive,input_tets,output_tets,growth,seconds,certified_by" > "$out"
+for mesh in ${MESHES:-"$data"/G1/*.mesh}; do
+  name=$(basename "$mesh" .mesh)
+  for dom in cube tet pyr octa star; do
+    map="$data/G1_$dom/${name}_$dom.txt"
+    [ -f "$map" ] || continue
+    json=$("$bin/volmap-map" "$mesh" "$map" "$tmp/out.mesh" --refined-input "$tmp/in.mesh" --json "$@" 2>/dev/null)
+    code=$?
+    echo "$json" | python3 -c "
+import json,sys
+try: j=json.loads(sys.stdin.read())
+except Exception: j={}
+print(','.join(str(x) for x in ['$name','$dom',$code,j.get('certified',False),j.get('zero',0)+j.get('negative',0) if j else -1,
+      j.get('input_tets',''),j.get('output_tets',''),j.get('growth',''),j.get('seconds',''),j.get('certified_by','')]))" >> "$out"
+  done
+done
+rm -rf "$tmp"
