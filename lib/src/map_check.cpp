@@ -94,44 +94,97 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
   MapCheckReport report;
   report.num_tets = nt;
   report.connectivity = pairing.match;
-  std::vector<std::int8_t> sign_in(nt), sign_out(nt);
-  report.input = batch_signs(in_xyz, nv, in.tets.data(), nt, sign_in.data(), options.parallel, "input mesh");
-  report.output = batch_signs(out_xyz, nv, in.tets.data(), nt, sign_out.data(), options.parallel, "output mesh");
 
-  // Absolute mode: the output in its own per-tet vertex order.
+  // Absolute mode with another per-tet vertex order: the output in its own order, up front.
   std::vector<std::int8_t> sign_own;
-  if (options.absolute) {
-    if (pairing.match == ConnectivityMatch::Identical) {
-      report.output_own_order = report.output;
-    } else {
-      sign_own.resize(nt);
-      report.output_own_order =
-          batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
-    }
+  if (options.absolute && pairing.match != ConnectivityMatch::Identical) {
+    sign_own.resize(nt);
+    report.output_own_order =
+        batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
   }
 
-  for (std::size_t t = 0; t < nt; ++t) {
-    const int si = sign_in[t], so = sign_out[t];
-    bool bad = false;
-    if (si == 0 || so == 0) {
-      ++report.relative_zero;
-      bad = true;
-    } else if (si != so) {
-      ++report.relative_negative;
-      bad = true;
-    } else {
-      ++report.relative_positive;
+  // Fused pass: per chunk, the input and output signs go to chunk-local buffers (the chunk's tet
+  // indices stay in cache for the second predicate call) and are compared at once; no per-tet
+  // arrays, no serial sweep afterwards. Chunks run on TBB workers; results are merged in chunk order.
+  constexpr std::size_t kChunk = std::is_same<Coordinate, double>::value ? 4096 : 512;
+  struct ChunkResult {
+    TetSignCounts in, out;
+    std::size_t relative_positive = 0, relative_zero = 0, relative_negative = 0, bad = 0;
+    std::vector<std::uint64_t> first_bad;  // allocated only when the chunk has a bad tet
+    const char* error = nullptr;           // predicate failure (which mesh is in `error_in_input`)
+    bool error_in_input = false;
+  };
+  const std::size_t num_chunks = (nt + kChunk - 1) / kChunk;
+  std::vector<ChunkResult> chunks(num_chunks);
+  const std::uint32_t* tets = in.tets.data();
+  auto run_chunk = [&](std::size_t c) {
+    ChunkResult& res = chunks[c];
+    const std::size_t begin = c * kChunk, count = std::min(kChunk, nt - begin);
+    std::int8_t si[kChunk], so[kChunk];
+    res.in = orient3d_tets(in_xyz, nv, tets + 4 * begin, count, si);
+    if (!res.in.ok) {
+      res.error = res.in.error;
+      res.error_in_input = true;
+      return;
     }
-    if (options.absolute) {
-      int own = so;
-      if (!sign_own.empty()) own = sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
-      if (own <= 0) bad = true;
+    res.out = orient3d_tets(out_xyz, nv, tets + 4 * begin, count, so);
+    if (!res.out.ok) {
+      res.error = res.out.error;
+      return;
     }
-    if (bad) {
-      ++report.num_bad;
+    if (res.in.positive == count && res.out.positive == count && sign_own.empty()) {
+      res.relative_positive = count;  // the common case: every tet positive on both sides
+      return;
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      const int a = si[k], b = so[k];
+      bool bad = false;
+      if (a == 0 || b == 0) {
+        ++res.relative_zero;
+        bad = true;
+      } else if (a != b) {
+        ++res.relative_negative;
+        bad = true;
+      } else {
+        ++res.relative_positive;
+      }
+      if (options.absolute) {
+        const std::size_t t = begin + k;
+        const int own = sign_own.empty() ? b : sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
+        if (own <= 0) bad = true;
+      }
+      if (bad) {
+        ++res.bad;
+        if (res.first_bad.size() < options.max_reported_bad) res.first_bad.push_back(begin + k);
+      }
+    }
+  };
+  if (options.parallel && num_chunks > 1) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) run_chunk(c);
+    });
+  } else {
+    for (std::size_t c = 0; c < num_chunks; ++c) run_chunk(c);
+  }
+  for (const ChunkResult& res : chunks) {
+    if (res.error) throw_bad_input("", 0, std::string(res.error_in_input ? "input mesh" : "output mesh") + ": " + res.error);
+  }
+  for (const ChunkResult& res : chunks) {
+    report.input.positive += res.in.positive;
+    report.input.zero += res.in.zero;
+    report.input.negative += res.in.negative;
+    report.output.positive += res.out.positive;
+    report.output.zero += res.out.zero;
+    report.output.negative += res.out.negative;
+    report.relative_positive += res.relative_positive;
+    report.relative_zero += res.relative_zero;
+    report.relative_negative += res.relative_negative;
+    report.num_bad += res.bad;
+    for (std::uint64_t t : res.first_bad) {
       if (report.first_bad.size() < options.max_reported_bad) report.first_bad.push_back(t);
     }
   }
+  if (options.absolute && sign_own.empty()) report.output_own_order = report.output;
   return report;
 }
 
@@ -148,6 +201,10 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
                                std::to_string(out.num_tets()));
   }
   for (const TetMeshData* mesh : {&in, &out}) {
+    // Branch-free maximum first (vectorised); locate the offending id only on failure.
+    std::uint32_t largest = 0;
+    for (const std::uint32_t id : mesh->tets) largest = std::max(largest, id);
+    if (mesh->tets.empty() || largest < nv) continue;
     for (std::size_t i = 0; i < mesh->tets.size(); ++i) {
       if (mesh->tets[i] >= nv) {
         throw_bad_input("", 0, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
