@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cstring>
+#include <memory>
 #include <string>
 
 namespace volmap {
@@ -103,24 +105,32 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
         batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
   }
 
-  // Fused pass: per chunk, the input and output signs go to chunk-local buffers (the chunk's tet
-  // indices stay in cache for the second predicate call) and are compared at once; no per-tet
-  // arrays, no serial sweep afterwards. Chunks run on TBB workers; results are merged in chunk order.
-  constexpr std::size_t kChunk = std::is_same<Coordinate, double>::value ? 4096 : 512;
+  // Fused pass: per chunk, the input and output signs of the chunk's tets, then their comparison
+  // right away (only when some tet of the chunk is not positive on both sides: the common valid
+  // case never reads the signs back). The batch predicate scans every vertex once per call (its
+  // L0 census), so there are few, large chunks: one when serial, about two per worker when parallel.
+  // Chunks run on TBB workers; results are merged in chunk order.
+  const std::size_t workers = options.parallel ? static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()) : 1;
+  constexpr std::size_t kMinChunk = std::is_same<Coordinate, double>::value ? 16384 : 1024;
+  const std::size_t wanted = std::max<std::size_t>(1, std::min(2 * workers, nt / kMinChunk));
+  const std::size_t chunk_size = nt == 0 ? 1 : (nt + wanted - 1) / wanted;
   struct ChunkResult {
     TetSignCounts in, out;
     std::size_t relative_positive = 0, relative_zero = 0, relative_negative = 0, bad = 0;
     std::vector<std::uint64_t> first_bad;  // allocated only when the chunk has a bad tet
-    const char* error = nullptr;           // predicate failure (which mesh is in `error_in_input`)
+    const char* error = nullptr;           // predicate failure (which mesh: error_in_input)
     bool error_in_input = false;
   };
-  const std::size_t num_chunks = (nt + kChunk - 1) / kChunk;
+  const std::size_t num_chunks = (nt + chunk_size - 1) / chunk_size;
   std::vector<ChunkResult> chunks(num_chunks);
   const std::uint32_t* tets = in.tets.data();
+  // Sign buffers for both meshes (uninitialised: every entry is written before it is read).
+  std::unique_ptr<std::int8_t[]> sign_buffer(new std::int8_t[2 * nt + 1]);
   auto run_chunk = [&](std::size_t c) {
     ChunkResult& res = chunks[c];
-    const std::size_t begin = c * kChunk, count = std::min(kChunk, nt - begin);
-    std::int8_t si[kChunk], so[kChunk];
+    const std::size_t begin = c * chunk_size, count = std::min(chunk_size, nt - begin);
+    std::int8_t* si = sign_buffer.get() + begin;
+    std::int8_t* so = sign_buffer.get() + nt + begin;
     res.in = orient3d_tets(in_xyz, nv, tets + 4 * begin, count, si);
     if (!res.in.ok) {
       res.error = res.in.error;
@@ -200,11 +210,19 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
     throw_bad_input("", 0, "tet count mismatch: input has " + std::to_string(nt) + " tets, output " +
                                std::to_string(out.num_tets()));
   }
+  // The common case (the candidate-method contract): the output repeats the input's tet array.
+  const bool identical =
+      in.tets.empty() || std::memcmp(in.tets.data(), out.tets.data(), in.tets.size() * sizeof(std::uint32_t)) == 0;
   for (const TetMeshData* mesh : {&in, &out}) {
-    // Branch-free maximum first (vectorised); locate the offending id only on failure.
-    std::uint32_t largest = 0;
-    for (const std::uint32_t id : mesh->tets) largest = std::max(largest, id);
-    if (mesh->tets.empty() || largest < nv) continue;
+    if (mesh == &out && identical) break;  // same ids as the input, already checked
+    // Branch-free OR of the comparisons first (vectorised, no loop-carried max); locate the offending
+    // id only on failure.
+    std::uint32_t any_out_of_range = 0;
+    const std::uint32_t* ids = mesh->tets.data();
+    const std::size_t n = mesh->tets.size();
+    const std::uint32_t limit = static_cast<std::uint32_t>(std::min<std::size_t>(nv, 0xffffffffu));
+    for (std::size_t i = 0; i < n; ++i) any_out_of_range |= static_cast<std::uint32_t>(ids[i] >= limit);
+    if (nv > 0xffffffffu || !any_out_of_range) continue;
     for (std::size_t i = 0; i < mesh->tets.size(); ++i) {
       if (mesh->tets[i] >= nv) {
         throw_bad_input("", 0, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
@@ -214,7 +232,7 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
     }
   }
   ConnectivityPairing pairing;
-  if (in.tets.size() == 0 || std::memcmp(in.tets.data(), out.tets.data(), in.tets.size() * sizeof(std::uint32_t)) == 0) {
+  if (identical) {
     pairing.match = ConnectivityMatch::Identical;
     return pairing;
   }
