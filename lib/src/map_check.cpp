@@ -105,9 +105,9 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
         batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
   }
 
-  // Fused pass: per chunk, the input and output signs of the chunk's tets, then their comparison
-  // right away (only when some tet of the chunk is not positive on both sides: the common valid
-  // case never reads the signs back). The batch predicate scans every vertex once per call (its
+  // Fused pass: per chunk, the input and output sign counts of the chunk's tets; only a chunk with a
+  // tet that is not positive on both sides is evaluated again with per-tet signs and compared (the
+  // common valid case allocates nothing and never reads signs back). The batch predicate scans every vertex once per call (its
   // L0 census), so there are few, large chunks: one when serial, about two per worker when parallel.
   // Chunks run on TBB workers; results are merged in chunk order.
   const std::size_t workers = options.parallel ? static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()) : 1;
@@ -124,28 +124,32 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
   const std::size_t num_chunks = (nt + chunk_size - 1) / chunk_size;
   std::vector<ChunkResult> chunks(num_chunks);
   const std::uint32_t* tets = in.tets.data();
-  // Sign buffers for both meshes (uninitialised: every entry is written before it is read).
-  std::unique_ptr<std::int8_t[]> sign_buffer(new std::int8_t[2 * nt + 1]);
   auto run_chunk = [&](std::size_t c) {
     ChunkResult& res = chunks[c];
     const std::size_t begin = c * chunk_size, count = std::min(chunk_size, nt - begin);
-    std::int8_t* si = sign_buffer.get() + begin;
-    std::int8_t* so = sign_buffer.get() + nt + begin;
-    res.in = orient3d_tets(in_xyz, nv, tets + 4 * begin, count, si);
+    // Counts only first (no sign array is written: no allocation, no page faults); when every tet of
+    // the chunk is positive on both sides, which is the valid-map case, that is all.
+    res.in = orient3d_tets(in_xyz, nv, tets + 4 * begin, count, nullptr);
     if (!res.in.ok) {
       res.error = res.in.error;
       res.error_in_input = true;
       return;
     }
-    res.out = orient3d_tets(out_xyz, nv, tets + 4 * begin, count, so);
+    res.out = orient3d_tets(out_xyz, nv, tets + 4 * begin, count, nullptr);
     if (!res.out.ok) {
       res.error = res.out.error;
       return;
     }
     if (res.in.positive == count && res.out.positive == count && sign_own.empty()) {
-      res.relative_positive = count;  // the common case: every tet positive on both sides
+      res.relative_positive = count;
       return;
     }
+    // Some tet is not positive (an invalid map): evaluate the chunk again, keeping the signs.
+    std::vector<std::int8_t> signs(2 * count);
+    std::int8_t* si = signs.data();
+    std::int8_t* so = signs.data() + count;
+    orient3d_tets(in_xyz, nv, tets + 4 * begin, count, si);
+    orient3d_tets(out_xyz, nv, tets + 4 * begin, count, so);
     for (std::size_t k = 0; k < count; ++k) {
       const int a = si[k], b = so[k];
       bool bad = false;
