@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cstring>
+#include <memory>
 #include <string>
 
 namespace volmap {
@@ -94,44 +96,109 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
   MapCheckReport report;
   report.num_tets = nt;
   report.connectivity = pairing.match;
-  std::vector<std::int8_t> sign_in(nt), sign_out(nt);
-  report.input = batch_signs(in_xyz, nv, in.tets.data(), nt, sign_in.data(), options.parallel, "input mesh");
-  report.output = batch_signs(out_xyz, nv, in.tets.data(), nt, sign_out.data(), options.parallel, "output mesh");
 
-  // Absolute mode: the output in its own per-tet vertex order.
+  // Absolute mode with another per-tet vertex order: the output in its own order, up front.
   std::vector<std::int8_t> sign_own;
-  if (options.absolute) {
-    if (pairing.match == ConnectivityMatch::Identical) {
-      report.output_own_order = report.output;
-    } else {
-      sign_own.resize(nt);
-      report.output_own_order =
-          batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
-    }
+  if (options.absolute && pairing.match != ConnectivityMatch::Identical) {
+    sign_own.resize(nt);
+    report.output_own_order =
+        batch_signs(out_xyz, nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
   }
 
-  for (std::size_t t = 0; t < nt; ++t) {
-    const int si = sign_in[t], so = sign_out[t];
-    bool bad = false;
-    if (si == 0 || so == 0) {
-      ++report.relative_zero;
-      bad = true;
-    } else if (si != so) {
-      ++report.relative_negative;
-      bad = true;
-    } else {
-      ++report.relative_positive;
+  // Fused pass: per chunk, the input and output sign counts of the chunk's tets; only a chunk with a
+  // tet that is not positive on both sides is evaluated again with per-tet signs and compared (the
+  // common valid case allocates nothing and never reads signs back). The batch predicate scans every vertex once per call (its
+  // L0 census), so there are few, large chunks: one when serial, about two per worker when parallel.
+  // Chunks run on TBB workers; results are merged in chunk order.
+  const std::size_t workers = options.parallel ? static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()) : 1;
+  constexpr std::size_t kMinChunk = std::is_same<Coordinate, double>::value ? 16384 : 1024;
+  const std::size_t wanted = std::max<std::size_t>(1, std::min(2 * workers, nt / kMinChunk));
+  const std::size_t chunk_size = nt == 0 ? 1 : (nt + wanted - 1) / wanted;
+  struct ChunkResult {
+    TetSignCounts in, out;
+    std::size_t relative_positive = 0, relative_zero = 0, relative_negative = 0, bad = 0;
+    std::vector<std::uint64_t> first_bad;  // allocated only when the chunk has a bad tet
+    const char* error = nullptr;           // predicate failure (which mesh: error_in_input)
+    bool error_in_input = false;
+  };
+  const std::size_t num_chunks = (nt + chunk_size - 1) / chunk_size;
+  std::vector<ChunkResult> chunks(num_chunks);
+  const std::uint32_t* tets = in.tets.data();
+  auto run_chunk = [&](std::size_t c) {
+    ChunkResult& res = chunks[c];
+    const std::size_t begin = c * chunk_size, count = std::min(chunk_size, nt - begin);
+    // Counts only first (no sign array is written: no allocation, no page faults); when every tet of
+    // the chunk is positive on both sides, which is the valid-map case, that is all.
+    res.in = orient3d_tets(in_xyz, nv, tets + 4 * begin, count, nullptr);
+    if (!res.in.ok) {
+      res.error = res.in.error;
+      res.error_in_input = true;
+      return;
     }
-    if (options.absolute) {
-      int own = so;
-      if (!sign_own.empty()) own = sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
-      if (own <= 0) bad = true;
+    res.out = orient3d_tets(out_xyz, nv, tets + 4 * begin, count, nullptr);
+    if (!res.out.ok) {
+      res.error = res.out.error;
+      return;
     }
-    if (bad) {
-      ++report.num_bad;
+    if (res.in.positive == count && res.out.positive == count && sign_own.empty()) {
+      res.relative_positive = count;
+      return;
+    }
+    // Some tet is not positive (an invalid map): evaluate the chunk again, keeping the signs.
+    std::vector<std::int8_t> signs(2 * count);
+    std::int8_t* si = signs.data();
+    std::int8_t* so = signs.data() + count;
+    orient3d_tets(in_xyz, nv, tets + 4 * begin, count, si);
+    orient3d_tets(out_xyz, nv, tets + 4 * begin, count, so);
+    for (std::size_t k = 0; k < count; ++k) {
+      const int a = si[k], b = so[k];
+      bool bad = false;
+      if (a == 0 || b == 0) {
+        ++res.relative_zero;
+        bad = true;
+      } else if (a != b) {
+        ++res.relative_negative;
+        bad = true;
+      } else {
+        ++res.relative_positive;
+      }
+      if (options.absolute) {
+        const std::size_t t = begin + k;
+        const int own = sign_own.empty() ? b : sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
+        if (own <= 0) bad = true;
+      }
+      if (bad) {
+        ++res.bad;
+        if (res.first_bad.size() < options.max_reported_bad) res.first_bad.push_back(begin + k);
+      }
+    }
+  };
+  if (options.parallel && num_chunks > 1) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) run_chunk(c);
+    });
+  } else {
+    for (std::size_t c = 0; c < num_chunks; ++c) run_chunk(c);
+  }
+  for (const ChunkResult& res : chunks) {
+    if (res.error) throw_bad_input("", 0, std::string(res.error_in_input ? "input mesh" : "output mesh") + ": " + res.error);
+  }
+  for (const ChunkResult& res : chunks) {
+    report.input.positive += res.in.positive;
+    report.input.zero += res.in.zero;
+    report.input.negative += res.in.negative;
+    report.output.positive += res.out.positive;
+    report.output.zero += res.out.zero;
+    report.output.negative += res.out.negative;
+    report.relative_positive += res.relative_positive;
+    report.relative_zero += res.relative_zero;
+    report.relative_negative += res.relative_negative;
+    report.num_bad += res.bad;
+    for (std::uint64_t t : res.first_bad) {
       if (report.first_bad.size() < options.max_reported_bad) report.first_bad.push_back(t);
     }
   }
+  if (options.absolute && sign_own.empty()) report.output_own_order = report.output;
   return report;
 }
 
@@ -147,7 +214,19 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
     throw_bad_input("", 0, "tet count mismatch: input has " + std::to_string(nt) + " tets, output " +
                                std::to_string(out.num_tets()));
   }
+  // The common case (the candidate-method contract): the output repeats the input's tet array.
+  const bool identical =
+      in.tets.empty() || std::memcmp(in.tets.data(), out.tets.data(), in.tets.size() * sizeof(std::uint32_t)) == 0;
   for (const TetMeshData* mesh : {&in, &out}) {
+    if (mesh == &out && identical) break;  // same ids as the input, already checked
+    // Branch-free OR of the comparisons first (vectorised, no loop-carried max); locate the offending
+    // id only on failure.
+    std::uint32_t any_out_of_range = 0;
+    const std::uint32_t* ids = mesh->tets.data();
+    const std::size_t n = mesh->tets.size();
+    const std::uint32_t limit = static_cast<std::uint32_t>(std::min<std::size_t>(nv, 0xffffffffu));
+    for (std::size_t i = 0; i < n; ++i) any_out_of_range |= static_cast<std::uint32_t>(ids[i] >= limit);
+    if (nv > 0xffffffffu || !any_out_of_range) continue;
     for (std::size_t i = 0; i < mesh->tets.size(); ++i) {
       if (mesh->tets[i] >= nv) {
         throw_bad_input("", 0, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
@@ -157,7 +236,7 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
     }
   }
   ConnectivityPairing pairing;
-  if (in.tets.size() == 0 || std::memcmp(in.tets.data(), out.tets.data(), in.tets.size() * sizeof(std::uint32_t)) == 0) {
+  if (identical) {
     pairing.match = ConnectivityMatch::Identical;
     return pairing;
   }

@@ -1,16 +1,26 @@
 // metrics.cpp — VOLMAP-compatible distortion metrics (volmap-reference.md §7; VOLMAP metrics/functions.cpp,
 // cinolib distortion_energies.cpp, Verdict report SAND2007-1751 §6.11 radius ratio and scaled Jacobian).
 // Orientation: VOLMAP-positive = exact orient3d > 0; per-tet work uses the INPUT tet's vertex ids on
-// both meshes. Energies are evaluated from rotation invariants of J = F_out·F_in⁻¹ instead of an
-// iterative SVD (same values to rounding): with I1 = ‖J‖², I2 = ‖cof J‖², d = det J,
-//   Σsᵢ² = I1, Σsᵢ⁻² = I2/d², s1s2s3 = |d|, (s1²+s2²)(s2²+s3²)(s3²+s1²) = I1·I2 − d²;
-// ARAP needs the singular values themselves: eigenvalues of JᵀJ in closed form (trigonometric).
+// both meshes.
+// Two arithmetic paths:
+//  * VOLMAP-compatible fields (report.energy, per-tet energies and singular values) follow the
+//    reference's floating-point path operation by operation, so that the printed digits agree even
+//    on tets that are flat at double precision (the duck star pair has ~900): F0, F1 as row-major
+//    3×3 with columns aᵢ−a0, F0⁻¹ by Eigen's fixed-size inverse, J = F1·F0⁻¹ as a plain i-j-k
+//    triple loop starting from 0, singular values by Eigen::JacobiSVD (full U and V, row-major
+//    matrix), the energies in cinolib's left-to-right form (pow for squares and the 2/3 power),
+//    weights = |(L2×L0)·L3/6| with L0 = p1−p0, L2 = p0−p2, L3 = p3−p0 on the output tet.
+//  * Our extra fields (energy_scaled) use rotation invariants of J with det J = det F_out/det F_in
+//    (no cancellation in the product of singular values): with I1 = ‖J‖², I2 = ‖cof J‖², d = det J,
+//    Σsᵢ² = I1, Σsᵢ⁻² = I2/d², s1s2s3 = |d|, (s1²+s2²)(s2²+s3²)(s3²+s1²) = I1·I2 − d²; ARAP takes
+//    the JacobiSVD singular values (a closed-form eigen-solve of JᵀJ loses s3 on flat tets).
 // Per-tet values are computed in parallel (TBB) and reduced serially in tet order, as VOLMAP sums.
 #include <volmap/error.hpp>
 #include <volmap/map_check.hpp>
 #include <volmap/metrics.hpp>
 #include <volmap/predicates.hpp>
 
+#include <Eigen/Dense>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -49,40 +59,17 @@ double det3(const Mat3 m) {
          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
-// Eigenvalues (descending) of a symmetric 3×3 matrix, closed form (trigonometric; Smith 1961).
-void symmetric_eigenvalues(const Mat3 a, double out[3]) {
-  const double p1 = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-  const double q = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
-  const double d0 = a[0][0] - q, d1 = a[1][1] - q, d2 = a[2][2] - q;
-  const double p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * p1;
-  if (p2 <= 0.0) {
-    out[0] = out[1] = out[2] = q;
-    return;
-  }
-  const double p = std::sqrt(p2 / 6.0);
-  const Mat3 b = {{d0 / p, a[0][1] / p, a[0][2] / p}, {a[1][0] / p, d1 / p, a[1][2] / p}, {a[2][0] / p, a[2][1] / p, d2 / p}};
-  const double r = std::clamp(det3(b) / 2.0, -1.0, 1.0);
-  const double phi = std::acos(r) / 3.0;
-  const double pi = 3.14159265358979323846;
-  out[0] = q + 2.0 * p * std::cos(phi);
-  out[2] = q + 2.0 * p * std::cos(phi + 2.0 * pi / 3.0);
-  out[1] = 3.0 * q - out[0] - out[2];
-}
-
 double clamp_energy(double d, double lower, double upper) {
   if (std::isinf(d) || std::isnan(d)) d = upper;
   return std::clamp(d, lower, upper);
 }
 
-// Rotation invariants of J: I1 = ‖J‖², I2 = ‖cof J‖², det J, and (only when ARAP can be below the
-// clamp) the eigenvalues of JᵀJ = squared singular values.
+// Rotation invariants of J: I1 = ‖J‖², I2 = ‖cof J‖², det J.
 struct Invariants {
   double i1 = 0, i2 = 0, det = 0;
-  double lambda[3] = {0, 0, 0};
-  bool have_lambda = false;
 };
 
-Invariants invariants_of(const Mat3 j, double det, double upper, const double* scales, int num_scales) {
+Invariants invariants_of(const Mat3 j, double det) {
   Invariants v;
   v.det = det;
   for (int r = 0; r < 3; ++r)
@@ -95,45 +82,83 @@ Invariants invariants_of(const Mat3 j, double det, double upper, const double* s
       v.i2 += minor * minor;
     }
   }
-  // ARAP = Σ(sᵢ−1)² ≥ (√I1 − √3)² (since Σsᵢ ≤ √(3·I1)): skip the eigenvalues when every requested
-  // scale already saturates the clamp.
-  bool need = false;
-  for (int k = 0; k < num_scales; ++k) {
-    const double root = std::sqrt(v.i1) * scales[k] - std::sqrt(3.0);
-    need = need || !(root * root >= upper);
-  }
-  if (need) {
-    Mat3 cmat;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) cmat[r][c] = j[0][r] * j[0][c] + j[1][r] * j[1][c] + j[2][r] * j[2][c];
-    symmetric_eigenvalues(cmat, v.lambda);
-    v.have_lambda = true;
-  }
   return v;
 }
 
-// Clamped energies of scale·J.
-void energies_from_invariants(const Invariants& v, double scale, double upper, double* out) {
+// Clamped energies of scale·J from the invariants (conformal, Dirichlet, SymDir, MIPS3D) and the
+// singular values (ARAP).
+void energies_from_invariants(const Invariants& v, const double sigma[3], double scale, double upper, double* out) {
   const double s2 = scale * scale;
   const double i1 = v.i1 * s2, i2 = v.i2 * s2 * s2, det = v.det * s2 * scale;
   const double det2 = det * det;
   const double conformal = i1 / (3.0 * std::pow(std::fabs(det), 2.0 / 3.0));
   const double dirichlet = i1;
   const double symdir = i1 + i2 / det2;
-  double arap = upper;
-  if (v.have_lambda) {
-    arap = 0;
-    for (double l : v.lambda) {
-      const double s = std::sqrt(std::max(l, 0.0) * s2);
-      arap += (s - 1.0) * (s - 1.0);
-    }
-  }
+  double arap = 0;
+  for (int k = 0; k < 3; ++k) arap += (sigma[k] * scale - 1.0) * (sigma[k] * scale - 1.0);
   const double mips = (i1 * i2 - det2) / (8.0 * det2);
   out[0] = clamp_energy(conformal, 1.0, upper);
   out[1] = clamp_energy(dirichlet, 3.0, upper);
   out[2] = clamp_energy(symdir, 6.0, upper);
   out[3] = clamp_energy(arap, 0.0, upper);
   out[4] = clamp_energy(mips, 1.0, upper);
+}
+
+// ---- VOLMAP-compatible path (see the file comment): same operations, same order as the reference.
+using RowMat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+
+// J = F1·F0⁻¹ and its singular values s1 ≥ s2 ≥ s3 (JacobiSVD); NaN/inf when F0 is singular.
+void compat_singular_values(const double* const in[4], const double* const out[4], double sigma[3]) {
+  RowMat3 f0, f1;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) {
+      f0(r, c) = in[c + 1][r] - in[0][r];
+      f1(r, c) = out[c + 1][r] - out[0][r];
+    }
+  const RowMat3 inv = f0.inverse();
+  RowMat3 j;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      double acc = 0;
+      for (int k = 0; k < 3; ++k) acc += f1(r, k) * inv(k, c);
+      j(r, c) = acc;
+    }
+  if (!j.allFinite()) {
+    // F_in exactly singular in doubles (4 duck source tets). Eigen 3.4's JacobiSVD returns early on a
+    // non-finite matrix (info() == InvalidInput) and leaves the singular values UNSET: VOLMAP reads
+    // uninitialised memory there (its duck Dirichlet/SymDir/ARAP minima). We report NaN, which the
+    // clamp turns into `upper` (what Eigen 3.3 did: the NaN propagated).
+    sigma[0] = sigma[1] = sigma[2] = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const Eigen::JacobiSVD<RowMat3> svd(j, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  for (int k = 0; k < 3; ++k) sigma[k] = svd.singularValues()[k];
+}
+
+// cinolib's five 3D energies of (s_max, s_mid, s_min), clamped as VOLMAP does.
+void compat_energies(const double s[3], double upper, double* out) {
+  const double a = s[0], b = s[1], c = s[2];
+  const double conformal = (a * a + b * b + c * c) / (3 * std::pow(a * b * c, 2. / 3.));
+  const double dirichlet = a * a + b * b + c * c;
+  const double symdir = a * a + b * b + c * c + 1 / (a * a) + 1 / (b * b) + 1 / (c * c);
+  const double arap = std::pow(a - 1, 2) + std::pow(b - 1, 2) + std::pow(c - 1, 2);
+  const double mips = 1. / 8. * (a / b + b / a) * (c / a + a / c) * (b / c + c / b);
+  out[0] = clamp_energy(conformal, 1.0, upper);
+  out[1] = clamp_energy(dirichlet, 3.0, upper);
+  out[2] = clamp_energy(symdir, 6.0, upper);
+  out[3] = clamp_energy(arap, 0.0, upper);
+  out[4] = clamp_energy(mips, 1.0, upper);
+}
+
+// cinolib tet_unsigned_volume: |(L2×L0)·L3| / 6 with L0 = p1−p0, L2 = p0−p2, L3 = p3−p0.
+double compat_unsigned_volume(const double* p0, const double* p1, const double* p2, const double* p3) {
+  const double l0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double l2[3] = {p0[0] - p2[0], p0[1] - p2[1], p0[2] - p2[2]};
+  const double l3[3] = {p3[0] - p0[0], p3[1] - p0[1], p3[2] - p0[2]};
+  const double cr[3] = {l2[1] * l0[2] - l2[2] * l0[1], l2[2] * l0[0] - l2[0] * l0[2], l2[0] * l0[1] - l2[1] * l0[0]};
+  double d = 0;
+  for (int k = 0; k < 3; ++k) d += cr[k] * l3[k];
+  return std::fabs(d / 6.0);
 }
 
 // J = F_out·F_in⁻¹ and det J = det F_out / det F_in.
@@ -214,15 +239,16 @@ double energy_lower_bound(Energy e) {
 
 std::array<double, kNumEnergies> tet_energies(const double* const in[4], const double* const out[4], double upper) {
   std::array<double, kNumEnergies> e{};
-  Mat3 j;
-  double det = 0;
-  if (!jacobian(in, out, j, det)) {
-    e.fill(upper);
-    return e;
-  }
-  const double unit = 1.0;
-  energies_from_invariants(invariants_of(j, det, upper, &unit, 1), 1.0, upper, e.data());
+  double sigma[3];
+  compat_singular_values(in, out, sigma);
+  compat_energies(sigma, upper, e.data());
   return e;
+}
+
+std::array<double, 3> tet_singular_values(const double* const in[4], const double* const out[4]) {
+  std::array<double, 3> s{};
+  compat_singular_values(in, out, s.data());
+  return s;
 }
 
 double tet_radius_ratio_compat(const double* p0, const double* p1, const double* p2, const double* p3) {
@@ -276,11 +302,11 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
   }
 
   // Per-tet pass (parallel): volumes, energies, quality measures.
-  constexpr int kFields = 2 * kNumEnergies + 6;  // energies, scaled energies, vol_in, vol_out, trr_out, q_in, sj_out, _
+  constexpr int kFields = 2 * kNumEnergies + 6;  // energies, scaled energies, trr_out, q_in, sj_out, s1, s2, s3
   std::vector<double> field(static_cast<std::size_t>(kFields) * nt);
   double volume_in = 0, volume_out_signed = 0, volume_out_abs = 0;
   // Totals first (serial sum in tet order; cheap) to get the scale factor.
-  std::vector<double> vol_in(nt), vol_out(nt);
+  std::vector<double> vol_in(nt), vol_out(nt), weight_compat(nt, 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const std::uint32_t* tet = &in.tets[4 * t];
@@ -308,16 +334,17 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
       const double* pout[4] = {&out.xyz[3 * tet[0]], &out.xyz[3 * tet[1]], &out.xyz[3 * tet[2]],
                                &out.xyz[3 * tet[3]]};
       double* f = &field[static_cast<std::size_t>(kFields) * t];
+      double* sigma = f + 2 * kNumEnergies + 3;
+      compat_singular_values(pin, pout, sigma);
       if (sign_out[t] > 0) {
+        compat_energies(sigma, upper, f);
+        weight_compat[t] = compat_unsigned_volume(pout[0], pout[1], pout[2], pout[3]);
         Mat3 j;
         double det = 0;
         if (jacobian(pin, pout, j, det)) {
-          const double scales[2] = {1.0, scale};
-          const Invariants inv = invariants_of(j, det, upper, scales, 2);
-          energies_from_invariants(inv, 1.0, upper, f);
-          energies_from_invariants(inv, scale, upper, f + kNumEnergies);
+          energies_from_invariants(invariants_of(j, det), sigma, scale, upper, f + kNumEnergies);
         } else {
-          std::fill(f, f + 2 * kNumEnergies, upper);
+          std::fill(f + kNumEnergies, f + 2 * kNumEnergies, upper);
         }
       } else {
         std::fill(f, f + 2 * kNumEnergies, upper);
@@ -343,14 +370,14 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
       if (sign_out[t] <= 0) continue;
       any = true;
       const double* f = &field[static_cast<std::size_t>(kFields) * t];
-      const double w = std::fabs(vol_out[t]);
+      const double w = weight_compat[t];
+      const double ws = std::fabs(vol_out[t]) * cube;
       for (int e = 0; e < kNumEnergies; ++e) {
         const double d = f[e];
         mn[e] = std::min(mn[e], d);
         mx[e] = std::max(mx[e], d);
         sum[e] += d * w;
       }
-      const double ws = w * cube;
       for (int e = kNumEnergies; e < kSets; ++e) {
         const double d = f[e];
         mn[e] = std::min(mn[e], d);
@@ -391,12 +418,14 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
     p.quality_in.resize(nt);
     p.quality_out.resize(nt);
     p.scaled_jacobian_out.resize(nt);
+    p.singular_values.resize(3 * nt);
     for (std::size_t t = 0; t < nt; ++t) {
       const double* f = &field[static_cast<std::size_t>(kFields) * t];
       for (int e = 0; e < kNumEnergies; ++e) p.energy[e][t] = f[e];
       p.quality_out[t] = sign_out[t] * (1.0 / f[2 * kNumEnergies]);
       p.quality_in[t] = 1.0 / f[2 * kNumEnergies + 1];
       p.scaled_jacobian_out[t] = f[2 * kNumEnergies + 2];
+      for (int k = 0; k < 3; ++k) p.singular_values[3 * t + k] = f[2 * kNumEnergies + 3 + k];
     }
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

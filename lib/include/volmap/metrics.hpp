@@ -10,9 +10,11 @@
 //   SymDir     Σsᵢ² + Σsᵢ⁻²                               lower 6
 //   ARAP       Σ(sᵢ−1)²                                   lower 0
 //   MIPS3D     ⅛(s1/s2+s2/s1)(s3/s1+s1/s3)(s2/s3+s3/s2)  lower 1
-// computed from the invariants of C = JᵀJ (‖J‖², ‖cof J‖², det J) and, for ARAP only, the
-// eigenvalues of C (closed form). E = Σ d·|V_out| / Σ|V_out| over valid (non-inverted) tets (VOLMAP
-// weights by OUTPUT volume). "Tet radius ratio" (compat) = −R/(3r) over all output tets (Verdict §6.11);
+// VOLMAP-compatible fields follow the reference's floating-point path (Eigen inverse of F_in, J by a
+// plain triple loop, Eigen JacobiSVD, cinolib's formulas; see metrics.cpp) so that they match its
+// printed digits even on tets flat at double precision; energy_scaled uses rotation invariants
+// (‖J‖², ‖cof J‖², det J = det F_out/det F_in). E = Σ d·|V_out| / Σ|V_out| over valid
+// (non-inverted) tets (VOLMAP weights by OUTPUT volume). "Tet radius ratio" (compat) = −R/(3r) over all output tets (Verdict §6.11);
 // quality = 3r/R ∈ (0,1]. Scaled Jacobian (Verdict), negated so VOLMAP-positive tets are > 0.
 #pragma once
 
@@ -48,6 +50,7 @@ struct PerTetMetrics {
   std::array<std::vector<double>, kNumEnergies> energy;  // clamped energies; upper for inverted tets
   std::vector<double> quality_in, quality_out;           // 3r/R (signed by orientation for the output)
   std::vector<double> scaled_jacobian_out;               // VOLMAP-positive sign
+  std::vector<double> singular_values;  // 3 per tet: s1 >= s2 >= s3 >= 0 of J (JacobiSVD; every tet, inverted too)
 };
 
 struct MetricsReport {
@@ -82,6 +85,8 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
 // Single-tet helpers (points are 3 doubles), exposed for tests and other modules.
 // Returns the clamped energies of J = F_out·F_in⁻¹ (valid tets only; not for inverted ones).
 std::array<double, kNumEnergies> tet_energies(const double* const in[4], const double* const out[4], double upper);
+// Singular values s1 >= s2 >= s3 of J = F_out·F_in⁻¹ (VOLMAP's path: Eigen inverse, JacobiSVD).
+std::array<double, 3> tet_singular_values(const double* const in[4], const double* const out[4]);
 double tet_radius_ratio_compat(const double* p0, const double* p1, const double* p2, const double* p3);  // −R/(3r)
 double tet_scaled_jacobian_volmap(const double* p0, const double* p1, const double* p2, const double* p3);
 
