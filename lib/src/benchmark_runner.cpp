@@ -199,7 +199,11 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
 
   std::vector<std::string> argv = method.command;
   argv.insert(argv.end(), {c.mesh_path, c.map_path, output.string()});
-  if (method.builtin && method.name != "tutte3d") argv.insert(argv.end(), {"--refined-input", refined.string()});
+  if (method.builtin && method.name != "tutte3d") {
+    argv.insert(argv.end(), {"--refined-input", refined.string()});
+    // Built-in mappers stop by themselves before the runner's deadline, keeping their best map.
+    if (options.timeout_s > 0) argv.insert(argv.end(), {"--time-limit", std::to_string(0.8 * options.timeout_s)});
+  }
   const ProcessResult run = run_process(argv, options.timeout_s, (work / "candidate.out").string(),
                                        (work / "candidate.err").string(), child_pid,
                                        {"VOLMAP_REFINED_INPUT=" + refined.string()});  // for external candidates
