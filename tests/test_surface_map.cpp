@@ -17,6 +17,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 using namespace volmap;
@@ -150,6 +152,44 @@ TEST_CASE("volmap-surface-map writes only verified maps; the check tool agrees")
     cut.xyz.resize(cut.xyz.size() - 3);
     write_boundary_map((dir / "cut.txt").string(), cut);
     CHECK(run(chk + " " + mesh_path.string() + " " + (dir / "cut.txt").string()) == 1);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("volmap-surface-map --volmap-precision writes 6 decimals that pass the exact check") {
+  VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/duck.mesh");
+  const auto dir = std::filesystem::temp_directory_path() / ("volmap_smap6_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string smap = volmap_test::tool("volmap-surface-map").string();
+  const std::string chk = volmap_test::tool("volmap-surface-map-check").string();
+  for (const char* d : {"cube", "tet"}) {  // duck -> tet adds no vertex: the input mesh is the map's mesh
+    CAPTURE(d);
+    const std::string map = (dir / (std::string("duck6_") + d + ".txt")).string();
+    const std::string refined = (dir / (std::string("duck6_") + d + "_in.mesh")).string();
+    CHECK(run(smap + " " + d + " " + mesh_path.string() + " " + map + " --refined " + refined + " --volmap-precision") == 0);
+    REQUIRE(std::filesystem::exists(map));
+    CHECK(!std::filesystem::exists(map + ".volmap6.tmp"));
+    // Every coordinate is written with exactly 6 decimals.
+    std::ifstream in(map);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t numbers = 0, six = 0;
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '.') {
+        ++numbers;
+        std::size_t k = i + 1;
+        while (k < text.size() && text[k] >= '0' && text[k] <= '9') ++k;
+        six += (k - i - 1) == 6;
+      }
+    const BoundaryMap m = read_boundary_map(map);
+    CHECK(numbers == 3 * m.size());
+    CHECK(six == numbers);
+    const std::string mesh = std::filesystem::exists(refined) ? refined : mesh_path.string();
+    const TetMeshData tm = read_medit(mesh);
+    const Domain dom = builtin_domain(d);
+    const auto c = check_surface_map(tm, m, &dom);
+    CHECK(c.ok);
+    CHECK(c.positive == c.boundary_triangles);
+    CHECK(run(chk + " " + mesh + " " + map + " --domain " + d) == 0);
   }
   std::filesystem::remove_all(dir);
 }
