@@ -162,7 +162,9 @@ TEST_CASE("volmap-surface-map --volmap-precision writes 6 decimals that pass the
   std::filesystem::create_directories(dir);
   const std::string smap = volmap_test::tool("volmap-surface-map").string();
   const std::string chk = volmap_test::tool("volmap-surface-map-check").string();
-  for (const char* d : {"cube", "tet"}) {  // duck -> tet adds no vertex: the input mesh is the map's mesh
+  // duck -> tet adds no vertex (the input mesh is the map's mesh); sphere points are off the sphere by
+  // the rounding (< 1e-6), accepted because every coordinate has 6 decimals.
+  for (const char* d : {"cube", "tet", "sphere"}) {
     CAPTURE(d);
     const std::string map = (dir / (std::string("duck6_") + d + ".txt")).string();
     const std::string refined = (dir / (std::string("duck6_") + d + "_in.mesh")).string();
@@ -185,9 +187,22 @@ TEST_CASE("volmap-surface-map --volmap-precision writes 6 decimals that pass the
     CHECK(six == numbers);
     const std::string mesh = std::filesystem::exists(refined) ? refined : mesh_path.string();
     const TetMeshData tm = read_medit(mesh);
-    const Domain dom = builtin_domain(d);
-    const auto c = check_surface_map(tm, m, &dom);
+    const bool sphere = std::string(d) == "sphere";
+    const Domain dom = builtin_domain(sphere ? "cube" : d);
+    SurfaceMapCheckOptions o;
+    if (sphere) {
+      o.override_kernel = true;
+      o.kernel = {50, 50, 50};
+      o.sphere_radius = 50;
+    }
+    const auto c = check_surface_map(tm, m, sphere ? nullptr : &dom, o);
     CHECK(c.ok);
+    CHECK(c.max_domain_distance < 1e-6);
+    if (sphere) {  // the 1e-6 allowance is only for 6-decimal maps: one extra digit anywhere voids it
+      BoundaryMap n = m;
+      n.xyz[0] += 1e-9;
+      CHECK(!check_surface_map(tm, n, nullptr, o).ok);
+    }
     CHECK(c.positive == c.boundary_triangles);
     CHECK(run(chk + " " + mesh + " " + map + " --domain " + d) == 0);
   }
