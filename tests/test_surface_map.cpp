@@ -82,7 +82,7 @@ TEST_CASE("duck onto the custom triprism domain") {
   CHECK(r.added_vertices == 10);  // the reference: 10 splits, 1157 map lines (volmap-reference.md §3)
 }
 
-TEST_CASE("mirrored input and genus-1 boundaries are refused; a single tet is refined until it maps") {
+TEST_CASE("mirrored input and genus-1 boundaries are refused and a single tet is refined until it maps") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/bone.mesh");
   TetMeshData mesh = read_medit(mesh_path.string());
   TetMeshData flipped = mesh;
@@ -121,7 +121,7 @@ static int run(const std::string& cmd) {
   return WEXITSTATUS(rc);
 }
 
-TEST_CASE("volmap-surface-map writes only verified maps; the check tool agrees") {
+TEST_CASE("volmap-surface-map writes only verified maps and the check tool agrees") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/duck.mesh");
   const auto dir = std::filesystem::temp_directory_path() / ("volmap_smap_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
