@@ -183,7 +183,11 @@ class Mapper {
   Surface s_;
   std::vector<char> masked_;
   std::vector<std::uint32_t> node_vertex_;
-  std::vector<std::vector<std::uint32_t>> arc_path_;  // per domain arc, from -> to
+  // Traced arcs, from -> to, in one pool: arc a is arc_pool_[arc_first_[a], + arc_size_[a]) (size 0:
+  // not traced yet). Paths are appended in tracing order.
+  std::vector<std::uint32_t> arc_pool_, arc_first_, arc_size_;
+  Span<std::uint32_t> arc_path(int arc) const { return {arc_pool_.data() + arc_first_[arc], arc_size_[arc]}; }
+  bool arc_traced(int arc) const { return arc_size_[arc] != 0; }
   std::unordered_map<std::uint64_t, std::int32_t> arc_edge_;  // key -> 2*arc + (path visits min first ? 1 : 0)
   // Dijkstra scratch.
   std::vector<double> dist_;
@@ -203,7 +207,7 @@ class Mapper {
   bool is_arc_edge(std::uint32_t a, std::uint32_t b) const { return arc_edge_.count(edge_key(a, b)) != 0; }
   // First vertex after node n along traced arc `arc`.
   std::uint32_t arc_neighbour(int node, int arc) const {
-    const auto& p = arc_path_[arc];
+    const auto p = arc_path(arc);
     return domain_.arcs[arc].from == node ? p[1] : p[p.size() - 2];
   }
   bool sector(int node, int arc, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
@@ -255,9 +259,9 @@ bool Mapper::sector(int node, int arc, std::vector<std::uint32_t>& stamps, std::
   const int i = static_cast<int>(std::find(rot.begin(), rot.end(), arc) - rot.begin());
   int prev = -1, next = -1;
   for (int k = 1; k < deg && prev < 0; ++k)
-    if (!arc_path_[rot[(i - k + deg) % deg]].empty()) prev = rot[(i - k + deg) % deg];
+    if (arc_traced(rot[(i - k + deg) % deg])) prev = rot[(i - k + deg) % deg];
   for (int k = 1; k < deg && next < 0; ++k)
-    if (!arc_path_[rot[(i + k) % deg]].empty()) next = rot[(i + k) % deg];
+    if (arc_traced(rot[(i + k) % deg])) next = rot[(i + k) % deg];
   if (prev < 0) return false;
   const auto ring = s_.ring(node_vertex_[node]);
   const int r = static_cast<int>(ring.size());
@@ -319,7 +323,9 @@ std::vector<std::uint32_t> Mapper::trace(std::uint32_t a, std::uint32_t b, int n
 }
 
 void Mapper::commit_path(const std::vector<std::uint32_t>& path, int arc) {
-  arc_path_[arc] = path;
+  arc_first_[arc] = static_cast<std::uint32_t>(arc_pool_.size());
+  arc_size_[arc] = static_cast<std::uint32_t>(path.size());
+  arc_pool_.insert(arc_pool_.end(), path.begin(), path.end());
   for (auto v : path) masked_[v] = 1;
   for (std::size_t i = 0; i + 1 < path.size(); ++i)
     arc_edge_[edge_key(path[i], path[i + 1])] = 2 * arc + (path[i] < path[i + 1] ? 1 : 0);
@@ -368,7 +374,7 @@ std::vector<double> Mapper::embed_charts() {
   for (std::size_t n = 0; n < domain_.num_nodes(); ++n)
     for (int k = 0; k < 3; ++k) img[3 * node_vertex_[n] + k] = domain_.targets[n][k];
   for (std::size_t a = 0; a < domain_.arcs.size(); ++a) {
-    const auto& p = arc_path_[a];
+    const auto p = arc_path(static_cast<int>(a));
     const Point3& ta = domain_.targets[domain_.arcs[a].from];
     const Point3& tb = domain_.targets[domain_.arcs[a].to];
     double total = 0;
@@ -576,7 +582,9 @@ SurfaceMapResult Mapper::run() {
     s_.build_adjacency();
   }
   grow_vertex_arrays();
-  arc_path_.assign(domain_.arcs.size(), {});
+  arc_pool_.clear();
+  arc_first_.assign(domain_.arcs.size(), 0);
+  arc_size_.assign(domain_.arcs.size(), 0);
   assign_nodes(result);
 
   for (int arc : order_) {
