@@ -101,6 +101,27 @@ TEST_CASE("mirrored input and genus-1 boundaries are refused and a single tet is
     const SurfaceMapResult r = map_surface_to_domain(one, cube);
     CHECK(check_surface_map(r.mesh, r.map, &cube).ok);
     CHECK(r.added_vertices >= 4);
+    // The same tet with a vertex used by no tet (id 2, inside the bounding box so the node probes
+    // do not move; the used ones are renumbered inside refine_tets):
+    // same map, the unused vertex kept where it was, new vertices after it.
+    TetMeshData spare;
+    spare.xyz = {one.xyz[0], one.xyz[1], one.xyz[2], one.xyz[3], one.xyz[4], one.xyz[5], 0.25, 0.5, 0.125,
+                 one.xyz[6], one.xyz[7], one.xyz[8], one.xyz[9], one.xyz[10], one.xyz[11]};
+    spare.tets = one.tets;
+    for (auto& v : spare.tets) v += v >= 2;
+    const SurfaceMapResult s = map_surface_to_domain(spare, cube);
+    CHECK(s.added_vertices == r.added_vertices);
+    REQUIRE(s.mesh.num_vertices() == r.mesh.num_vertices() + 1);
+    CHECK(s.mesh.xyz[6] == 0.25);
+    CHECK(s.mesh.xyz[8] == 0.125);
+    CHECK(s.mesh.num_tets() == r.mesh.num_tets());
+    const auto signs = orient3d_tets(s.mesh.xyz.data(), s.mesh.num_vertices(), s.mesh.tets.data(), s.mesh.num_tets(), nullptr);
+    CHECK(signs.positive == s.mesh.num_tets());
+    for (auto v : s.mesh.tets) CHECK(v != 2);
+    CHECK(check_surface_map(s.mesh, s.map, &cube).ok);
+    REQUIRE(s.map.size() == r.map.size());
+    for (std::size_t k = 0; k < s.map.xyz.size(); ++k)
+      if (s.map.xyz[k] != r.map.xyz[k]) FAIL("map differs with an unused vertex");
   }
   // A genus-1 boundary (negative/robustpolycube_NY_2.mesh is in the opposite convention: flip it).
   if (const auto ny = volmap_test::data_file("negative/robustpolycube_NY_2.mesh"); !ny.empty()) {

@@ -520,19 +520,47 @@ std::vector<double> Mapper::embed_charts() {
 // Replays the surface's edge splits on the tets with TetMesh::split_edge (every tet around edge
 // (a,b) becomes two; the new vertex is appended, so its id is the surface's). A child is positive
 // iff the midpoint lies strictly on the replaced vertex's side; rounding can break that, so the
-// children (the tets holding a new vertex) are checked exactly.
+// children (the tets holding a new vertex) are checked exactly. TetMesh refuses vertices used by
+// no tet: an input with such vertices is replayed on its used vertices (renumbered in order) and
+// translated back, so they stay in the output where they were.
 void Mapper::refine_tets(TetMeshData& out) const {
   if (s_.splits.empty()) {
     out = mesh_;
     return;
   }
-  TetMesh tm(mesh_);
-  for (const auto& sp : s_.splits) {
-    const VertexId m = tm.split_edge(VertexId(sp[0]), VertexId(sp[1]), &s_.xyz[3 * std::size_t(sp[2])]);
-    if (m.idx() != sp[2]) fail("internal: the tet mesh numbered split vertex " + std::to_string(sp[2]) + " differently");
-  }
-  out = tm.to_data();
   const std::size_t nv0 = mesh_.num_vertices();
+  std::vector<std::uint32_t> compact_of(nv0, kInvalidIndex), original_of;  // used vertices only
+  for (auto v : mesh_.tets) compact_of[v] = 0;
+  const bool all_used = std::find(compact_of.begin(), compact_of.end(), kInvalidIndex) == compact_of.end();
+  TetMeshData used;
+  if (!all_used) {
+    for (std::uint32_t v = 0; v < nv0; ++v)
+      if (compact_of[v] != kInvalidIndex) {
+        compact_of[v] = static_cast<std::uint32_t>(original_of.size());
+        original_of.push_back(v);
+        used.xyz.insert(used.xyz.end(), &mesh_.xyz[3 * std::size_t(v)], &mesh_.xyz[3 * std::size_t(v)] + 3);
+      }
+    used.tets = mesh_.tets;
+    for (auto& v : used.tets) v = compact_of[v];
+    used.tet_labels = mesh_.tet_labels;
+  }
+  const auto nu = static_cast<std::uint32_t>(all_used ? nv0 : original_of.size());
+  const auto to_tm = [&](std::uint32_t v) {
+    return all_used ? v : v < nv0 ? compact_of[v] : static_cast<std::uint32_t>(nu + (v - nv0));
+  };
+  TetMesh tm(all_used ? mesh_ : used);
+  for (const auto& sp : s_.splits) {
+    const VertexId m = tm.split_edge(VertexId(to_tm(sp[0])), VertexId(to_tm(sp[1])), &s_.xyz[3 * std::size_t(sp[2])]);
+    if (m.idx() != to_tm(sp[2])) fail("internal: the tet mesh numbered split vertex " + std::to_string(sp[2]) + " differently");
+  }
+  TetMeshData refined = tm.to_data();
+  out.xyz = s_.xyz;
+  out.vertex_labels = mesh_.vertex_labels;
+  out.vertex_labels.resize(s_.num_vertices(), 0);
+  out.tets = std::move(refined.tets);
+  out.tet_labels = std::move(refined.tet_labels);
+  if (!all_used)
+    for (auto& v : out.tets) v = v < nu ? original_of[v] : static_cast<std::uint32_t>(nv0 + (v - nu));
   for (std::size_t t = 0; t < out.num_tets(); ++t) {
     const std::uint32_t* q = &out.tets[4 * t];
     if (q[0] < nv0 && q[1] < nv0 && q[2] < nv0 && q[3] < nv0) continue;
