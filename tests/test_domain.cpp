@@ -10,7 +10,7 @@
 
 using namespace volmap;
 
-TEST_CASE("built-in domains have the reference's nodes, arcs and faces") {
+TEST_CASE("built-in domains have the reference's nodes and arcs and faces") {
   struct Expect { const char* name; int nodes, arcs, faces; };
   for (auto e : {Expect{"cube", 8, 12, 6}, Expect{"tet", 4, 6, 4}, Expect{"pyr", 5, 8, 5},
                  Expect{"octa", 6, 12, 8}, Expect{"star", 14, 36, 24}}) {

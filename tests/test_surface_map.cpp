@@ -17,6 +17,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 using namespace volmap;
@@ -80,7 +82,7 @@ TEST_CASE("duck onto the custom triprism domain") {
   CHECK(r.added_vertices == 10);  // the reference: 10 splits, 1157 map lines (volmap-reference.md §3)
 }
 
-TEST_CASE("mirrored input and genus-1 boundaries are refused; a single tet is refined until it maps") {
+TEST_CASE("mirrored input and genus-1 boundaries are refused and a single tet is refined until it maps") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/bone.mesh");
   TetMeshData mesh = read_medit(mesh_path.string());
   TetMeshData flipped = mesh;
@@ -99,6 +101,27 @@ TEST_CASE("mirrored input and genus-1 boundaries are refused; a single tet is re
     const SurfaceMapResult r = map_surface_to_domain(one, cube);
     CHECK(check_surface_map(r.mesh, r.map, &cube).ok);
     CHECK(r.added_vertices >= 4);
+    // The same tet with a vertex used by no tet (id 2, inside the bounding box so the node probes
+    // do not move; the used ones are renumbered inside refine_tets):
+    // same map, the unused vertex kept where it was, new vertices after it.
+    TetMeshData spare;
+    spare.xyz = {one.xyz[0], one.xyz[1], one.xyz[2], one.xyz[3], one.xyz[4], one.xyz[5], 0.25, 0.5, 0.125,
+                 one.xyz[6], one.xyz[7], one.xyz[8], one.xyz[9], one.xyz[10], one.xyz[11]};
+    spare.tets = one.tets;
+    for (auto& v : spare.tets) v += v >= 2;
+    const SurfaceMapResult s = map_surface_to_domain(spare, cube);
+    CHECK(s.added_vertices == r.added_vertices);
+    REQUIRE(s.mesh.num_vertices() == r.mesh.num_vertices() + 1);
+    CHECK(s.mesh.xyz[6] == 0.25);
+    CHECK(s.mesh.xyz[8] == 0.125);
+    CHECK(s.mesh.num_tets() == r.mesh.num_tets());
+    const auto signs = orient3d_tets(s.mesh.xyz.data(), s.mesh.num_vertices(), s.mesh.tets.data(), s.mesh.num_tets(), nullptr);
+    CHECK(signs.positive == s.mesh.num_tets());
+    for (auto v : s.mesh.tets) CHECK(v != 2);
+    CHECK(check_surface_map(s.mesh, s.map, &cube).ok);
+    REQUIRE(s.map.size() == r.map.size());
+    for (std::size_t k = 0; k < s.map.xyz.size(); ++k)
+      if (s.map.xyz[k] != r.map.xyz[k]) FAIL("map differs with an unused vertex");
   }
   // A genus-1 boundary (negative/robustpolycube_NY_2.mesh is in the opposite convention: flip it).
   if (const auto ny = volmap_test::data_file("negative/robustpolycube_NY_2.mesh"); !ny.empty()) {
@@ -119,7 +142,7 @@ static int run(const std::string& cmd) {
   return WEXITSTATUS(rc);
 }
 
-TEST_CASE("volmap-surface-map writes only verified maps; the check tool agrees") {
+TEST_CASE("volmap-surface-map writes only verified maps and the check tool agrees") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/duck.mesh");
   const auto dir = std::filesystem::temp_directory_path() / ("volmap_smap_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -150,6 +173,59 @@ TEST_CASE("volmap-surface-map writes only verified maps; the check tool agrees")
     cut.xyz.resize(cut.xyz.size() - 3);
     write_boundary_map((dir / "cut.txt").string(), cut);
     CHECK(run(chk + " " + mesh_path.string() + " " + (dir / "cut.txt").string()) == 1);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("volmap-surface-map --volmap-precision writes 6 decimals that pass the exact check") {
+  VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/duck.mesh");
+  const auto dir = std::filesystem::temp_directory_path() / ("volmap_smap6_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string smap = volmap_test::tool("volmap-surface-map").string();
+  const std::string chk = volmap_test::tool("volmap-surface-map-check").string();
+  // duck -> tet adds no vertex (the input mesh is the map's mesh); sphere points are off the sphere by
+  // the rounding (< 1e-6), accepted because every coordinate has 6 decimals.
+  for (const char* d : {"cube", "tet", "sphere"}) {
+    CAPTURE(d);
+    const std::string map = (dir / (std::string("duck6_") + d + ".txt")).string();
+    const std::string refined = (dir / (std::string("duck6_") + d + "_in.mesh")).string();
+    CHECK(run(smap + " " + d + " " + mesh_path.string() + " " + map + " --refined " + refined + " --volmap-precision") == 0);
+    REQUIRE(std::filesystem::exists(map));
+    CHECK(!std::filesystem::exists(map + ".volmap6.tmp"));
+    // Every coordinate is written with exactly 6 decimals.
+    std::ifstream in(map);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t numbers = 0, six = 0;
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '.') {
+        ++numbers;
+        std::size_t k = i + 1;
+        while (k < text.size() && text[k] >= '0' && text[k] <= '9') ++k;
+        six += (k - i - 1) == 6;
+      }
+    const BoundaryMap m = read_boundary_map(map);
+    CHECK(numbers == 3 * m.size());
+    CHECK(six == numbers);
+    const std::string mesh = std::filesystem::exists(refined) ? refined : mesh_path.string();
+    const TetMeshData tm = read_medit(mesh);
+    const bool sphere = std::string(d) == "sphere";
+    const Domain dom = builtin_domain(sphere ? "cube" : d);
+    SurfaceMapCheckOptions o;
+    if (sphere) {
+      o.override_kernel = true;
+      o.kernel = {50, 50, 50};
+      o.sphere_radius = 50;
+    }
+    const auto c = check_surface_map(tm, m, sphere ? nullptr : &dom, o);
+    CHECK(c.ok);
+    CHECK(c.max_domain_distance < 1e-6);
+    if (sphere) {  // the 1e-6 allowance is only for 6-decimal maps: one extra digit anywhere voids it
+      BoundaryMap n = m;
+      n.xyz[0] += 1e-9;
+      CHECK(!check_surface_map(tm, n, nullptr, o).ok);
+    }
+    CHECK(c.positive == c.boundary_triangles);
+    CHECK(run(chk + " " + mesh + " " + map + " --domain " + d) == 0);
   }
   std::filesystem::remove_all(dir);
 }

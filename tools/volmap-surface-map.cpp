@@ -1,8 +1,11 @@
 // volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom> <in.mesh> <out_map.txt> [--domain file]
-//                    [--refined out.mesh] [--json]
+//                    [--refined out.mesh] [--volmap-precision] [--json]
 // Maps the boundary of a genus-0 tet mesh onto a base domain (see <volmap/surface_map.hpp>), checks
 // the map exactly and only then writes it (%.17g, sorted by vid) and, when edges were split, the
 // refined tet mesh the map refers to (default name: <out_map without extension>_in.mesh).
+// --volmap-precision writes VOLMAP's 6 decimals instead; the rounded map is read back from disk and
+// checked exactly again (same check, tolerance for 6-decimal points) and refused (exit 1, nothing
+// written) when rounding breaks it.
 // Exit 0 = map written; 1 = mapping or verification failed (nothing written); 2 = bad input.
 #include "tool_common.hpp"
 
@@ -11,6 +14,7 @@
 #include <volmap/surface_map.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -18,12 +22,14 @@ int main(int argc, char** argv) {
                "is written.",
                "volmap-surface-map"};
   std::string domain_name, mesh_path, map_path, domain_file, refined_path;
-  bool json = false;
+  bool json = false, volmap_precision = false;
   app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
   app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
   app.add_option("--refined", refined_path, "where to write the refined tet mesh when edges are split");
+  app.add_flag("--volmap-precision", volmap_precision,
+               "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
@@ -43,6 +49,35 @@ int main(int argc, char** argv) {
     if (sphere)
       r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},
                                     volmap::kSphereRadius);
+    if (volmap_precision) {
+      // Write the rounded map beside the output, read it back and check exactly what was written.
+      const std::string tmp = map_path + ".volmap6.tmp";
+      volmap::write_boundary_map(tmp, r.map, volmap::MapPrecision::Volmap6);
+      volmap::SurfaceMapCheckResult c;
+      try {
+        const volmap::BoundaryMap written = volmap::read_boundary_map(tmp);
+        volmap::SurfaceMapCheckOptions opt;
+        if (sphere) {
+          opt.override_kernel = true;
+          opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+          opt.sphere_radius = volmap::kSphereRadius;
+        }
+        c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
+      } catch (...) {
+        std::remove(tmp.c_str());
+        throw;
+      }
+      if (!c.ok) {
+        std::remove(tmp.c_str());
+        throw volmap::Error(volmap::ErrorKind::Failed, map_path, 0,
+                            "the map rounded to 6 decimals fails the exact check: " + c.reason);
+      }
+      r.check = c;
+      if (std::rename(tmp.c_str(), map_path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw volmap::Error(volmap::ErrorKind::Io, map_path, 0, "cannot rename the checked map into place");
+      }
+    }
     std::string refined_out;
     if (r.added_vertices > 0) {
       refined_out = refined_path;
@@ -55,7 +90,7 @@ int main(int argc, char** argv) {
       }
       volmap::write_medit(refined_out, r.mesh);
     }
-    volmap::write_boundary_map(map_path, r.map, volmap::MapPrecision::Full);
+    if (!volmap_precision) volmap::write_boundary_map(map_path, r.map, volmap::MapPrecision::Full);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (json) {
       nlohmann::json j{{"ok", true},
@@ -71,6 +106,7 @@ int main(int argc, char** argv) {
                        {"collided_nodes", r.collided_nodes},
                        {"check_positive", r.check.positive},
                        {"check_triangles", r.check.boundary_triangles},
+                       {"precision", volmap_precision ? "volmap6" : "full"},
                        {"seconds", seconds}};
       std::cout << j.dump() << "\n";
     } else {

@@ -2,13 +2,15 @@
 // Conventions: boundary triangles are kept in the outward winding of their tet (kTetFaceLocal), so
 // around a vertex v a triangle (v,x,y) turns counter-clockwise from x to y seen from outside, the same
 // sense as the domain's rotation system. Vertex ids are those of the tet mesh; split vertices are
-// appended. The working surface is a small flat structure (triangles + per-vertex triangle lists +
-// CSR adjacency rebuilt after each arc); the tet mesh is refined once at the end by replaying the
-// recorded edge splits.
+// appended. The working surface is a small flat structure (triangles + per-vertex triangle lists in
+// one pool (VertexTriangleLists) + CSR adjacency rebuilt after each arc); the tet mesh is refined
+// once at the end by replaying the recorded edge splits with TetMesh::split_edge (which appends the
+// new vertices in the same order, so vertex ids agree).
 #include <volmap/boundary_faces.hpp>
 #include <volmap/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface_map.hpp>
+#include <volmap/tet_mesh.hpp>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -32,10 +34,64 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
+// The triangles around every vertex, as lists in one flat pool (CSR with slack): list v occupies
+// pool[first[v], first[v] + size[v]) with room for cap[v] ids. A full list moves to the end of the
+// pool with twice the room, so pushes are amortised O(1) and no list owns a heap block. Lists keep
+// their order (append at the end, erase shifts), hence stay sorted by triangle id here: new triangles
+// always get the largest id.
+class VertexTriangleLists {
+ public:
+  void build(std::size_t nv, const std::vector<Tri>& tris) {
+    first_.assign(nv + 1, 0);
+    for (const Tri& t : tris)
+      for (auto v : t) ++first_[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) first_[v + 1] += first_[v];
+    pool_.assign(first_[nv], 0);
+    size_.assign(nv, 0);
+    cap_.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v) cap_[v] = first_[v + 1] - first_[v];
+    first_.pop_back();
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+      for (auto v : tris[t]) pool_[first_[v] + size_[v]++] = t;
+  }
+  void add_vertex() {
+    first_.push_back(static_cast<std::uint32_t>(pool_.size()));
+    size_.push_back(0);
+    cap_.push_back(0);
+  }
+  std::size_t size(std::uint32_t v) const { return size_[v]; }
+  bool empty(std::uint32_t v) const { return size_[v] == 0; }
+  // Valid until the next push_back.
+  Span<std::uint32_t> operator[](std::uint32_t v) const { return {pool_.data() + first_[v], size_[v]}; }
+  void push_back(std::uint32_t v, std::uint32_t t) {
+    if (size_[v] == cap_[v]) {
+      const std::uint32_t cap = std::max<std::uint32_t>(4, 2 * cap_[v]);
+      const auto at = static_cast<std::uint32_t>(pool_.size());
+      pool_.resize(pool_.size() + cap);
+      std::copy_n(pool_.begin() + first_[v], size_[v], pool_.begin() + at);
+      first_[v] = at;
+      cap_[v] = cap;
+    }
+    pool_[first_[v] + size_[v]++] = t;
+  }
+  void erase(std::uint32_t v, std::uint32_t t) {
+    std::uint32_t* p = pool_.data() + first_[v];
+    std::uint32_t* end = p + size_[v];
+    std::uint32_t* it = std::find(p, end, t);
+    if (it == end) return;
+    std::copy(it + 1, end, it);
+    --size_[v];
+  }
+
+ private:
+  std::vector<std::uint32_t> pool_, first_, size_, cap_;
+};
+
 struct Surface {
   std::vector<double> xyz;                       // every mesh vertex (grows with splits)
   std::vector<Tri> tris;                         // boundary triangles, outward
-  std::vector<std::vector<std::uint32_t>> vtris;  // boundary triangles around each vertex
+  VertexTriangleLists vtris;                     // boundary triangles around each vertex
+  std::vector<std::uint32_t> around_;            // split_edge scratch
   std::vector<std::uint32_t> adj_offset, adj;    // CSR neighbours (boundary edges)
   std::vector<std::array<std::uint32_t, 3>> splits;  // (a, b, new vertex) in order
 
@@ -84,10 +140,11 @@ struct Surface {
   std::uint32_t split_edge(std::uint32_t a, std::uint32_t b) {
     const auto m = static_cast<std::uint32_t>(num_vertices());
     for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * a + k] + xyz[3 * b + k]));
-    vtris.emplace_back();
-    const std::vector<std::uint32_t> around = vtris[a];
+    vtris.add_vertex();
+    const auto around_a = vtris[a];
+    around_.assign(around_a.begin(), around_a.end());
     int found = 0;
-    for (auto t : around) {
+    for (auto t : around_) {
       Tri tr = tris[t];
       int k = -1;
       for (int i = 0; i < 3; ++i)
@@ -99,12 +156,11 @@ struct Surface {
       tris[t] = {x, m, z};
       const auto t2 = static_cast<std::uint32_t>(tris.size());
       tris.push_back({m, y, z});
-      auto& vy = vtris[y];
-      vy.erase(std::find(vy.begin(), vy.end(), t));
-      vy.push_back(t2);
-      vtris[z].push_back(t2);
-      vtris[m].push_back(t);
-      vtris[m].push_back(t2);
+      vtris.erase(y, t);
+      vtris.push_back(y, t2);
+      vtris.push_back(z, t2);
+      vtris.push_back(m, t);
+      vtris.push_back(m, t2);
     }
     if (found != 2) fail("boundary edge " + std::to_string(a) + "-" + std::to_string(b) + " is not manifold");
     splits.push_back({a, b, m});
@@ -127,7 +183,11 @@ class Mapper {
   Surface s_;
   std::vector<char> masked_;
   std::vector<std::uint32_t> node_vertex_;
-  std::vector<std::vector<std::uint32_t>> arc_path_;  // per domain arc, from -> to
+  // Traced arcs, from -> to, in one pool: arc a is arc_pool_[arc_first_[a], + arc_size_[a]) (size 0:
+  // not traced yet). Paths are appended in tracing order.
+  std::vector<std::uint32_t> arc_pool_, arc_first_, arc_size_;
+  Span<std::uint32_t> arc_path(int arc) const { return {arc_pool_.data() + arc_first_[arc], arc_size_[arc]}; }
+  bool arc_traced(int arc) const { return arc_size_[arc] != 0; }
   std::unordered_map<std::uint64_t, std::int32_t> arc_edge_;  // key -> 2*arc + (path visits min first ? 1 : 0)
   // Dijkstra scratch.
   std::vector<double> dist_;
@@ -147,7 +207,7 @@ class Mapper {
   bool is_arc_edge(std::uint32_t a, std::uint32_t b) const { return arc_edge_.count(edge_key(a, b)) != 0; }
   // First vertex after node n along traced arc `arc`.
   std::uint32_t arc_neighbour(int node, int arc) const {
-    const auto& p = arc_path_[arc];
+    const auto p = arc_path(arc);
     return domain_.arcs[arc].from == node ? p[1] : p[p.size() - 2];
   }
   bool sector(int node, int arc, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
@@ -170,7 +230,7 @@ void Mapper::assign_nodes(SurfaceMapResult& result) {
     }
   std::vector<std::uint32_t> bverts;
   for (std::uint32_t v = 0; v < s_.num_vertices(); ++v)
-    if (!s_.vtris[v].empty()) bverts.push_back(v);
+    if (!s_.vtris.empty(v)) bverts.push_back(v);
   node_vertex_.assign(domain_.num_nodes(), UINT32_MAX);
   for (int n = 0; n < static_cast<int>(domain_.num_nodes()); ++n) {
     if (!domain_.has_probe(n)) continue;
@@ -199,9 +259,9 @@ bool Mapper::sector(int node, int arc, std::vector<std::uint32_t>& stamps, std::
   const int i = static_cast<int>(std::find(rot.begin(), rot.end(), arc) - rot.begin());
   int prev = -1, next = -1;
   for (int k = 1; k < deg && prev < 0; ++k)
-    if (!arc_path_[rot[(i - k + deg) % deg]].empty()) prev = rot[(i - k + deg) % deg];
+    if (arc_traced(rot[(i - k + deg) % deg])) prev = rot[(i - k + deg) % deg];
   for (int k = 1; k < deg && next < 0; ++k)
-    if (!arc_path_[rot[(i + k) % deg]].empty()) next = rot[(i + k) % deg];
+    if (arc_traced(rot[(i + k) % deg])) next = rot[(i + k) % deg];
   if (prev < 0) return false;
   const auto ring = s_.ring(node_vertex_[node]);
   const int r = static_cast<int>(ring.size());
@@ -263,7 +323,9 @@ std::vector<std::uint32_t> Mapper::trace(std::uint32_t a, std::uint32_t b, int n
 }
 
 void Mapper::commit_path(const std::vector<std::uint32_t>& path, int arc) {
-  arc_path_[arc] = path;
+  arc_first_[arc] = static_cast<std::uint32_t>(arc_pool_.size());
+  arc_size_[arc] = static_cast<std::uint32_t>(path.size());
+  arc_pool_.insert(arc_pool_.end(), path.begin(), path.end());
   for (auto v : path) masked_[v] = 1;
   for (std::size_t i = 0; i + 1 < path.size(); ++i)
     arc_edge_[edge_key(path[i], path[i + 1])] = 2 * arc + (path[i] < path[i + 1] ? 1 : 0);
@@ -274,8 +336,9 @@ void Mapper::split_chords(const std::vector<std::uint32_t>& path) {
   for (auto p : path) {
     for (bool again = true; again;) {
       again = false;
-      for (auto t : s_.vtris[p]) {
-        const Tri& tr = s_.tris[t];
+      const std::size_t deg = s_.vtris.size(p);
+      for (std::size_t i = 0; i < deg; ++i) {  // by index: a split below ends this loop
+        const Tri& tr = s_.tris[s_.vtris[p][i]];
         const int k = tr[0] == p ? 0 : tr[1] == p ? 1 : 2;
         const std::uint32_t q = tr[(k + 1) % 3];
         if (masked_[q] && !is_arc_edge(p, q)) {
@@ -311,7 +374,7 @@ std::vector<double> Mapper::embed_charts() {
   for (std::size_t n = 0; n < domain_.num_nodes(); ++n)
     for (int k = 0; k < 3; ++k) img[3 * node_vertex_[n] + k] = domain_.targets[n][k];
   for (std::size_t a = 0; a < domain_.arcs.size(); ++a) {
-    const auto& p = arc_path_[a];
+    const auto p = arc_path(static_cast<int>(a));
     const Point3& ta = domain_.targets[domain_.arcs[a].from];
     const Point3& tb = domain_.targets[domain_.arcs[a].to];
     double total = 0;
@@ -380,17 +443,25 @@ std::vector<double> Mapper::embed_charts() {
   // Tutte per chart in the face plane.
   std::vector<std::int32_t> local(nv, -1);
   std::vector<std::uint32_t> interior;
-  std::vector<std::vector<std::uint32_t>> chart_tris(chart_face.size());
-  for (std::uint32_t t = 0; t < nt; ++t) chart_tris[chart[t]].push_back(t);
+  // Triangles of each chart, CSR (sorted by triangle id).
+  std::vector<std::uint32_t> chart_first(chart_face.size() + 1, 0), chart_tris(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) ++chart_first[chart[t] + 1];
+  for (std::size_t c = 0; c < chart_face.size(); ++c) chart_first[c + 1] += chart_first[c];
+  {
+    std::vector<std::uint32_t> fill(chart_first.begin(), chart_first.end() - 1);
+    for (std::uint32_t t = 0; t < nt; ++t) chart_tris[fill[chart[t]]++] = t;
+  }
   for (std::size_t c = 0; c < chart_face.size(); ++c) {
     const auto& face = domain_.faces[chart_face[c]];
     interior.clear();
-    for (auto t : chart_tris[c])
+    for (std::uint32_t q = chart_first[c]; q < chart_first[c + 1]; ++q) {
+      const std::uint32_t t = chart_tris[q];
       for (auto v : s_.tris[t])
         if (!masked_[v] && local[v] < 0) {
           local[v] = static_cast<std::int32_t>(interior.size());
           interior.push_back(v);
         }
+    }
     if (interior.empty()) continue;
     // Face frame: origin, e1 along the first side, e2 = normal x e1 (Newell normal).
     const Point3 o = domain_.targets[face.nodes[0]];
@@ -446,50 +517,56 @@ std::vector<double> Mapper::embed_charts() {
   return img;
 }
 
-// Replays the surface's edge splits on the tets: each tet around edge (a,b) becomes two, one with
-// a replaced by m, one with b replaced by m (same orientation when m lies on the segment; checked).
+// Replays the surface's edge splits on the tets with TetMesh::split_edge (every tet around edge
+// (a,b) becomes two; the new vertex is appended, so its id is the surface's). A child is positive
+// iff the midpoint lies strictly on the replaced vertex's side; rounding can break that, so the
+// children (the tets holding a new vertex) are checked exactly. TetMesh refuses vertices used by
+// no tet: an input with such vertices is replayed on its used vertices (renumbered in order) and
+// translated back, so they stay in the output where they were.
 void Mapper::refine_tets(TetMeshData& out) const {
-  out = mesh_;
-  if (s_.splits.empty()) return;
-  const std::size_t nv = s_.num_vertices();
-  out.xyz = s_.xyz;
-  out.vertex_labels.resize(nv, 0);
-  std::vector<std::vector<std::uint32_t>> vtets(nv);
-  for (std::uint32_t t = 0; t < out.num_tets(); ++t)
-    for (int k = 0; k < 4; ++k) vtets[out.tets[4 * t + k]].push_back(t);
-  for (const auto& sp : s_.splits) {
-    const std::uint32_t a = sp[0], b = sp[1], m = sp[2];
-    const std::vector<std::uint32_t> around = vtets[a];
-    for (auto t : around) {
-      std::uint32_t* tv = &out.tets[4 * t];
-      int ia = -1, ib = -1;
-      for (int k = 0; k < 4; ++k) {
-        if (tv[k] == a) ia = k;
-        if (tv[k] == b) ib = k;
-      }
-      if (ib < 0) continue;
-      std::array<std::uint32_t, 4> copy{tv[0], tv[1], tv[2], tv[3]};
-      copy[ib] = m;  // the new tet keeps a
-      tv[ia] = m;    // the old tet keeps b
-      const auto t2 = static_cast<std::uint32_t>(out.num_tets());
-      out.tets.insert(out.tets.end(), copy.begin(), copy.end());
-      out.tet_labels.push_back(out.tet_labels.empty() ? 0 : out.tet_labels[t]);
-      auto& va = vtets[a];
-      va.erase(std::find(va.begin(), va.end(), t));
-      va.push_back(t2);
-      vtets[m].push_back(t);
-      vtets[m].push_back(t2);
-      for (int k = 0; k < 4; ++k)
-        if (k != ia && k != ib) vtets[copy[k]].push_back(t2);
-      for (std::uint32_t tt : {t, t2}) {
-        const std::uint32_t* q = &out.tets[4 * tt];
-        if (orient3d_filtered(&out.xyz[3 * q[0]], &out.xyz[3 * q[1]], &out.xyz[3 * q[2]], &out.xyz[3 * q[3]]) <= 0)
-          fail("splitting edge " + std::to_string(a) + "-" + std::to_string(b) +
-               " produced a non-positive tet (midpoint rounding)");
-      }
-    }
+  if (s_.splits.empty()) {
+    out = mesh_;
+    return;
   }
-  if (out.tet_labels.size() != out.num_tets()) out.tet_labels.resize(out.num_tets(), 0);
+  const std::size_t nv0 = mesh_.num_vertices();
+  std::vector<std::uint32_t> compact_of(nv0, kInvalidIndex), original_of;  // used vertices only
+  for (auto v : mesh_.tets) compact_of[v] = 0;
+  const bool all_used = std::find(compact_of.begin(), compact_of.end(), kInvalidIndex) == compact_of.end();
+  TetMeshData used;
+  if (!all_used) {
+    for (std::uint32_t v = 0; v < nv0; ++v)
+      if (compact_of[v] != kInvalidIndex) {
+        compact_of[v] = static_cast<std::uint32_t>(original_of.size());
+        original_of.push_back(v);
+        used.xyz.insert(used.xyz.end(), &mesh_.xyz[3 * std::size_t(v)], &mesh_.xyz[3 * std::size_t(v)] + 3);
+      }
+    used.tets = mesh_.tets;
+    for (auto& v : used.tets) v = compact_of[v];
+    used.tet_labels = mesh_.tet_labels;
+  }
+  const auto nu = static_cast<std::uint32_t>(all_used ? nv0 : original_of.size());
+  const auto to_tm = [&](std::uint32_t v) {
+    return all_used ? v : v < nv0 ? compact_of[v] : static_cast<std::uint32_t>(nu + (v - nv0));
+  };
+  TetMesh tm(all_used ? mesh_ : used);
+  for (const auto& sp : s_.splits) {
+    const VertexId m = tm.split_edge(VertexId(to_tm(sp[0])), VertexId(to_tm(sp[1])), &s_.xyz[3 * std::size_t(sp[2])]);
+    if (m.idx() != to_tm(sp[2])) fail("internal: the tet mesh numbered split vertex " + std::to_string(sp[2]) + " differently");
+  }
+  TetMeshData refined = tm.to_data();
+  out.xyz = s_.xyz;
+  out.vertex_labels = mesh_.vertex_labels;
+  out.vertex_labels.resize(s_.num_vertices(), 0);
+  out.tets = std::move(refined.tets);
+  out.tet_labels = std::move(refined.tet_labels);
+  if (!all_used)
+    for (auto& v : out.tets) v = v < nu ? original_of[v] : static_cast<std::uint32_t>(nv0 + (v - nu));
+  for (std::size_t t = 0; t < out.num_tets(); ++t) {
+    const std::uint32_t* q = &out.tets[4 * t];
+    if (q[0] < nv0 && q[1] < nv0 && q[2] < nv0 && q[3] < nv0) continue;
+    if (orient3d_filtered(&out.xyz[3 * q[0]], &out.xyz[3 * q[1]], &out.xyz[3 * q[2]], &out.xyz[3 * q[3]]) <= 0)
+      fail("splitting a boundary edge produced a non-positive tet " + std::to_string(t) + " (midpoint rounding)");
+  }
 }
 
 SurfaceMapResult Mapper::run() {
@@ -510,11 +587,10 @@ SurfaceMapResult Mapper::run() {
     s_.tris.push_back({f[0], f[1], f[2]});
   }
   if (s_.tris.empty()) throw Error(ErrorKind::BadInput, "", 0, "the mesh has no boundary");
-  s_.vtris.assign(nv0, {});
-  for (std::uint32_t t = 0; t < s_.tris.size(); ++t)
-    for (auto v : s_.tris[t]) s_.vtris[v].push_back(t);
+  s_.vtris.build(nv0, s_.tris);
   {
-    const std::size_t nb = std::count_if(s_.vtris.begin(), s_.vtris.end(), [](auto& l) { return !l.empty(); });
+    std::size_t nb = 0;
+    for (std::uint32_t v = 0; v < nv0; ++v) nb += !s_.vtris.empty(v);
     // Euler characteristic of the boundary: a closed genus-0 surface has V - E + F = 2 with E = 3F/2.
     const long long chi = static_cast<long long>(nb) - static_cast<long long>(3 * s_.tris.size() / 2) +
                           static_cast<long long>(s_.tris.size());
@@ -524,7 +600,7 @@ SurfaceMapResult Mapper::run() {
   }
   s_.build_adjacency();
   for (std::uint32_t v = 0; v < nv0; ++v)
-    if (!s_.vtris[v].empty()) s_.ring(v);  // throws when not manifold
+    if (!s_.vtris.empty(v)) s_.ring(v);  // throws when not manifold
   for (int round = 0; round < subdivisions_; ++round) {  // coarse surfaces: split every boundary edge
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (const Tri& t : s_.tris)
@@ -534,7 +610,9 @@ SurfaceMapResult Mapper::run() {
     s_.build_adjacency();
   }
   grow_vertex_arrays();
-  arc_path_.assign(domain_.arcs.size(), {});
+  arc_pool_.clear();
+  arc_first_.assign(domain_.arcs.size(), 0);
+  arc_size_.assign(domain_.arcs.size(), 0);
   assign_nodes(result);
 
   for (int arc : order_) {
@@ -571,7 +649,7 @@ SurfaceMapResult Mapper::run() {
   result.added_vertices = result.mesh.num_vertices() - nv0;
   result.node_vertices = node_vertex_;
   for (std::uint32_t v = 0; v < s_.num_vertices(); ++v) {
-    if (s_.vtris[v].empty()) continue;
+    if (s_.vtris.empty(v)) continue;
     result.map.vids.push_back(v);
     for (int k = 0; k < 3; ++k) result.map.xyz.push_back(img[3 * v + k]);
   }
@@ -660,13 +738,13 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     return orient3d_filtered(&out.map.xyz[3 * slot[t[0]]], &out.map.xyz[3 * slot[t[1]]], &out.map.xyz[3 * slot[t[2]]],
                              centre.data());
   };
-  std::vector<std::vector<std::uint32_t>> vtris;
+  VertexTriangleLists vtris;  // built on the first non-positive cone
+  bool have_vtris = false;
   for (std::uint32_t t = 0; t < tris.size(); ++t)
     if (cone(tris[t]) <= 0) {
-      if (vtris.empty()) {
-        vtris.assign(out.mesh.num_vertices(), {});
-        for (std::uint32_t u = 0; u < tris.size(); ++u)
-          for (auto v : tris[u]) vtris[v].push_back(u);
+      if (!have_vtris) {
+        vtris.build(out.mesh.num_vertices(), tris);
+        have_vtris = true;
       }
       for (auto v : tris[t]) {
         double* p = &out.map.xyz[3 * slot[v]];

@@ -127,7 +127,11 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
 
   if (options.sphere_radius > 0) {
     r.domain_checked = true;
-    r.tolerance = options.position_tolerance > 0 ? options.position_tolerance : 1e-9 * 2 * options.sphere_radius;
+    r.tolerance = options.position_tolerance;
+    if (!(r.tolerance > 0)) {  // as for polyhedral domains: 1e-9 * size, or 1e-6 for 6-decimal maps
+      r.tolerance = 1e-9 * 2 * options.sphere_radius;
+      if (std::all_of(map.xyz.begin(), map.xyz.end(), has_at_most_6_decimals)) r.tolerance = std::max(r.tolerance, 1e-6);
+    }
     for (std::size_t i = 0; i < map.size(); ++i) {
       double d2 = 0;
       for (int k = 0; k < 3; ++k) d2 += (map.xyz[3 * i + k] - options.kernel[k]) * (map.xyz[3 * i + k] - options.kernel[k]);

@@ -18,7 +18,9 @@
 //  3. Refinement on the tet mesh (new vertices appended, ids stable): after each arc every boundary
 //     edge joining two arc/node vertices that is not an arc edge is split at its midpoint (all tets
 //     around it are split), which keeps a free path between any two arcs (paper Fig. 4) and makes
-//     every chart Tutte-embeddable.
+//     every chart Tutte-embeddable. The splits are made on the working boundary surface (flat
+//     arrays; triangles around a vertex in one pool) and replayed at the end on a TetMesh with
+//     TetMesh::split_edge, which appends vertices in the same order; new tets are checked exactly.
 //  4. Charts: boundary triangles flooded between arcs, each matched to its domain face by the side of
 //     its arcs; Tutte's embedding (uniform weights) in the face plane with the chart boundary on the
 //     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart.
