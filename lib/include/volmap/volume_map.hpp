@@ -1,6 +1,6 @@
 // volmap/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
 // Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
-// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2) → TLC (§6; the whole method with
+// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp) → TLC (§6; the whole method with
 // MapMethod::Tlc) → [cascade only] link-kernel relocation (§7 pre-step) → TLC with alpha 1e-8 →
 // FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation →
 // B1 cone repair (§7: NOT implemented yet, a no-op) → validity-preserving quality pass (§5).
@@ -58,10 +58,5 @@ struct VolumeMapResult {
 // Throws Error(BadInput) when the map does not match the mesh's boundary or a source tet is not
 // strictly positive.
 VolumeMapResult compute_volume_map(const TetMeshData& source, const BoundaryMap& map, const VolumeMapOptions& options = {});
-
-// Uniform-weight Tutte 3D: interior vertices at the mean of their edge neighbours, boundary fixed
-// (one sparse LDLᵀ factorisation, 3 right-hand sides). Overwrites the free entries of target_xyz.
-void tutte_uniform(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& on_boundary,
-                   std::vector<double>& target_xyz);
 
 }  // namespace volmap
