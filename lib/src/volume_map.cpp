@@ -13,7 +13,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -46,6 +45,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   const std::size_t nv = input.num_vertices(), nt = input.num_tets();
   r.input_tets = nt;
   r.input_vertices = nv;
+  if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
+    throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
   if (nt == 0) throw Error(ErrorKind::BadInput, "", 0, "the mesh has no tets");
   if (input.tets.size() != 4 * nt || input.xyz.size() != 3 * nv) throw Error(ErrorKind::BadInput, "", 0, "inconsistent mesh arrays");
   for (std::uint32_t v : input.tets)
@@ -127,7 +128,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     t0 = elapsed();
     TlcOptions to;
     const double rem = remaining();
-    to.time_limit_seconds = options.method == MapMethod::Tlc ? rem : (rem > 0 ? 0.5 * rem : 0);
+    to.time_limit_seconds = options.method == MapMethod::Tlc ? rem : (rem > 0 ? options.tlc_time_share * rem : 0);
     tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, to);
     bad = stage_done("tlc", t0);
     if (bad == 0) r.certified_by = "tlc";
@@ -148,14 +149,14 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // §5 FFM (regular reference, then rest shape), each followed by the link-kernel pre-step.
   if (bad > 0 && options.method == MapMethod::Ffm) {
     std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
-    if (std::getenv("VOLMAP_FFM_REST_FIRST")) std::swap(refs[0], refs[1]);
+    if (options.ffm_rest_shape_first) std::swap(refs[0], refs[1]);
     for (ReferenceShape ref : refs) {
       if (bad == 0 || out_of_time()) break;
       t0 = elapsed();
       FfmOptions fo;
       fo.reference = ref;
       fo.time_limit_seconds = remaining();
-      if (const char* it = std::getenv("VOLMAP_FFM_INNER")) fo.max_lbfgs_iterations = std::atoi(it);
+      if (options.ffm_max_lbfgs_iterations > 0) fo.max_lbfgs_iterations = options.ffm_max_lbfgs_iterations;
       ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
       const std::string name = ref == ReferenceShape::RegularTet ? "ffm-regular" : "ffm-rest";
       bad = stage_done(name, t0);

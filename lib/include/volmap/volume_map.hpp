@@ -31,6 +31,10 @@ struct VolumeMapOptions {
   bool quality_pass = true;
   int quality_iterations = 300;
   int max_threads = 0;             // 0 = TBB default; 1 = one core (benchmarks)
+  // Cascade (MapMethod::Ffm) tuning; MapMethod::Tlc gives TLC the whole budget.
+  double tlc_time_share = 0.5;         // fraction of the remaining time given to the first TLC stage
+  int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
+  bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
 };
 
 struct VolumeMapStage {
