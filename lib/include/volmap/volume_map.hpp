@@ -32,7 +32,14 @@ struct VolumeMapOptions {
   int quality_iterations = 300;
   int max_threads = 0;             // 0 = TBB default; 1 = one core (benchmarks)
   // Cascade (MapMethod::Ffm) tuning; MapMethod::Tlc gives TLC the whole budget.
-  double tlc_time_share = 0.5;         // fraction of the remaining time given to the first TLC stage
+  // Fraction of the remaining time given to the first TLC stage (the tlc-small-alpha round gets 0.3 of
+  // what is left after it, FFM the rest). Kept at 0.5: measured 2026-11-23 (bench/run_map_g1.sh,
+  // MESHES=bone+duck × 5 domains, --threads 1 --time-limit 20 --no-refine --no-quality) 0.5 and 0.8
+  // both certify 8/10 with identical leftovers (bone cube 3, bone star 7 non-positive). TLC either
+  // certifies in < 0.2 s or stalls: on bone cube it stops by itself after 6.4 s (4 bad) whatever the
+  // share; on bone star 10 s → 16 s of TLC still leaves 8 bad, while FFM certifies bone octa
+  // (12–13 s) only when it keeps enough time. So a larger TLC share buys nothing measured here.
+  double tlc_time_share = 0.5;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
 };
