@@ -11,6 +11,7 @@
 #include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/tlc.hpp>
+#include <volmap/tutte3d.hpp>
 #include <volmap/volume_map.hpp>
 
 #include "map_test_meshes.hpp"
@@ -164,7 +165,7 @@ TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, th
   std::vector<std::uint8_t> bnd(7, 0);
   for (auto v : volmap::boundary_vertex_ids(src)) bnd[v] = 1;
   auto tutte = img.xyz;
-  volmap::tutte_uniform(src.tets, bnd, tutte);
+  volmap::solve_uniform_laplacian(bnd.size(), volmap::unique_tet_edges(src), bnd, tutte);
   CHECK(exact_bad(tutte, src.tets) > 0);  // the counterexample: uniform Tutte folds
   const auto map = map_of(bnd, img.xyz);
   volmap::VolumeMapOptions opt;

@@ -1,6 +1,7 @@
 // volmap-map — certified robust volume mapper (docs/mapping.md; issue 6), candidate-method contract:
 //   volmap-map <in.mesh> <map.txt> <out.mesh> [--method ffm|tlc] [--refined-input path]
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
+//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first]   (cascade tuning, see volume_map.hpp)
 // out.mesh has the (refined) input's vertices and tets in the same order, boundary vertices bit-exactly
 // at the map's doubles, every other coordinate printed with %.17g. Refinement (chord splits, cone
 // repair) happens only when --refined-input is given (the refined source is written there; the pair
@@ -24,7 +25,9 @@ int main(int argc, char** argv) {
   std::string in_path, map_path, out_path, refined_path, rationals_path, method = "ffm";
   double max_growth = 0.05, time_limit = 0;
   bool no_refine = false, json = false, no_quality = false;
-  int threads = 0;
+  int threads = 0, ffm_inner = 0;
+  double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
+  bool ffm_rest_first = false;
   app.add_option("input", in_path, "source tet mesh (.mesh, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based)")->required();
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
@@ -37,6 +40,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--time-limit", time_limit, "soft time limit in seconds (0 = none)");
   app.add_option("--threads", threads, "worker threads (0 = all cores)");
+  app.add_option("--tlc-share", tlc_share, "cascade: fraction of the remaining time given to the first TLC stage")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--ffm-inner", ffm_inner, "cascade: L-BFGS iterations per FFM outer step (0 = default)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const volmap::TetMeshData input = volmap::read_medit(in_path);
@@ -49,6 +57,9 @@ int main(int argc, char** argv) {
     opt.time_limit_seconds = time_limit;
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
+    opt.tlc_time_share = tlc_share;
+    opt.ffm_max_lbfgs_iterations = ffm_inner;
+    opt.ffm_rest_shape_first = ffm_rest_first;
     const volmap::VolumeMapResult r = volmap::compute_volume_map(input, map, opt);
 
     volmap::TetMeshData out = r.source;

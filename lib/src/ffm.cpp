@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -414,18 +413,16 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
       Eigen::VectorXd x_before = x;
       try {
         result.lbfgs_iterations += solver.minimize(obj, x, fx);
-      } catch (const std::runtime_error& e) {
-        if (getenv("VOLMAP_FFM_DEBUG")) fprintf(stderr, "lbfgs: %s\n", e.what());
+      } catch (const std::runtime_error&) {
         // Line search gave up: keep the better of the start point and the current point.
+        ++result.line_search_failures;
         if (!(energy.evaluate(x.data(), eps, nullptr) <= E_prev)) x = x_before;
-      } catch (const std::logic_error& e) {
-        if (getenv("VOLMAP_FFM_DEBUG")) fprintf(stderr, "lbfgs: %s\n", e.what());
+      } catch (const std::logic_error&) {
+        ++result.line_search_failures;
         if (!(energy.evaluate(x.data(), eps, nullptr) <= E_prev)) x = x_before;
       }
       const double E = energy.evaluate(x.data(), eps, nullptr);
       const double dmin = energy.min_det(x.data());
-      if (std::getenv("VOLMAP_FFM_DEBUG"))
-        std::fprintf(stderr, "ffm outer %d eps %.3g E_prev %.6g E %.6g dmin %.3g evals %ld\n", outer, eps, E_prev, E, dmin, obj.evaluations);
       const double sigma = std::max(1.0 - E / E_prev, 0.1);
       const double mu = (1.0 - sigma) * ffm_chi(dmin, eps);
       if (dmin < mu)
@@ -442,8 +439,6 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   } catch (const CertifiedStop&) {
     x = obj.last_x;
   } catch (const TimeStop&) {
-    if (std::getenv("VOLMAP_FFM_DEBUG"))
-      std::fprintf(stderr, "ffm time stop: evals %ld E %.6g\n", obj.evaluations, energy.evaluate(obj.last_x.data(), eps, nullptr));
     x = obj.last_x;
     result.timed_out = true;
   }

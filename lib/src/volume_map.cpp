@@ -8,14 +8,11 @@
 #include <volmap/ffm.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/tlc.hpp>
+#include <volmap/tutte3d.hpp>
 
 #include <tbb/global_control.h>
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
-
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -31,55 +28,6 @@ std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<
   return c.zero + c.negative;
 }
 }  // namespace
-
-void tutte_uniform(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& on_boundary,
-                   std::vector<double>& target_xyz) {
-  const std::size_t nv = on_boundary.size();
-  std::vector<std::int64_t> index(nv, -1);
-  std::size_t n = 0;
-  for (std::size_t v = 0; v < nv; ++v)
-    if (!on_boundary[v]) index[v] = std::int64_t(n++);
-  if (n == 0) return;
-  std::vector<std::uint64_t> edges;
-  edges.reserve(tets.size() / 4 * 6);
-  static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  for (std::size_t t = 0; t < tets.size() / 4; ++t)
-    for (const auto& e : kEdge) {
-      std::uint64_t a = tets[4 * t + e[0]], b = tets[4 * t + e[1]];
-      if (a > b) std::swap(a, b);
-      edges.push_back((a << 32) | b);
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(2 * edges.size() + n);
-  std::vector<double> diag(n, 0.0);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(Eigen::Index(n), 3);
-  for (std::uint64_t e : edges) {
-    const std::uint32_t a = std::uint32_t(e >> 32), b = std::uint32_t(e & 0xffffffffu);
-    const std::int64_t ia = index[a], ib = index[b];
-    if (ia >= 0) diag[std::size_t(ia)] += 1;
-    if (ib >= 0) diag[std::size_t(ib)] += 1;
-    if (ia >= 0 && ib >= 0) {
-      trip.emplace_back(Eigen::Index(ia), Eigen::Index(ib), -1.0);
-      trip.emplace_back(Eigen::Index(ib), Eigen::Index(ia), -1.0);
-    } else if (ia >= 0) {
-      for (int i = 0; i < 3; ++i) rhs(Eigen::Index(ia), i) += target_xyz[3 * std::size_t(b) + i];
-    } else if (ib >= 0) {
-      for (int i = 0; i < 3; ++i) rhs(Eigen::Index(ib), i) += target_xyz[3 * std::size_t(a) + i];
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) trip.emplace_back(Eigen::Index(i), Eigen::Index(i), diag[i]);
-  Eigen::SparseMatrix<double> L(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  L.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-  if (solver.info() != Eigen::Success)
-    throw Error(ErrorKind::Failed, "", 0, "tutte: the interior Laplacian is singular (an interior component does not touch the boundary)");
-  const Eigen::MatrixXd X = solver.solve(rhs);
-  for (std::size_t v = 0; v < nv; ++v)
-    if (index[v] >= 0)
-      for (int i = 0; i < 3; ++i) target_xyz[3 * v + i] = X(Eigen::Index(index[v]), i);
-}
 
 VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
   const auto start = Clock::now();
@@ -97,6 +45,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   const std::size_t nv = input.num_vertices(), nt = input.num_tets();
   r.input_tets = nt;
   r.input_vertices = nv;
+  if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
+    throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
   if (nt == 0) throw Error(ErrorKind::BadInput, "", 0, "the mesh has no tets");
   if (input.tets.size() != 4 * nt || input.xyz.size() != 3 * nv) throw Error(ErrorKind::BadInput, "", 0, "inconsistent mesh arrays");
   for (std::uint32_t v : input.tets)
@@ -161,7 +111,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
 
   // §2 Tutte 3D.
   t0 = elapsed();
-  tutte_uniform(r.source.tets, r.on_boundary, r.target_xyz);
+  solve_uniform_laplacian(r.on_boundary.size(), unique_tet_edges(r.source), r.on_boundary, r.target_xyz);
   std::size_t bad = stage_done("tutte3d", t0);
   if (bad == 0) r.certified_by = "tutte3d";
 
@@ -178,7 +128,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     t0 = elapsed();
     TlcOptions to;
     const double rem = remaining();
-    to.time_limit_seconds = options.method == MapMethod::Tlc ? rem : (rem > 0 ? 0.5 * rem : 0);
+    to.time_limit_seconds = options.method == MapMethod::Tlc ? rem : (rem > 0 ? options.tlc_time_share * rem : 0);
     tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, to);
     bad = stage_done("tlc", t0);
     if (bad == 0) r.certified_by = "tlc";
@@ -199,14 +149,14 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // §5 FFM (regular reference, then rest shape), each followed by the link-kernel pre-step.
   if (bad > 0 && options.method == MapMethod::Ffm) {
     std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
-    if (std::getenv("VOLMAP_FFM_REST_FIRST")) std::swap(refs[0], refs[1]);
+    if (options.ffm_rest_shape_first) std::swap(refs[0], refs[1]);
     for (ReferenceShape ref : refs) {
       if (bad == 0 || out_of_time()) break;
       t0 = elapsed();
       FfmOptions fo;
       fo.reference = ref;
       fo.time_limit_seconds = remaining();
-      if (const char* it = std::getenv("VOLMAP_FFM_INNER")) fo.max_lbfgs_iterations = std::atoi(it);
+      if (options.ffm_max_lbfgs_iterations > 0) fo.max_lbfgs_iterations = options.ffm_max_lbfgs_iterations;
       ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
       const std::string name = ref == ReferenceShape::RegularTet ? "ffm-regular" : "ffm-rest";
       bad = stage_done(name, t0);

@@ -44,6 +44,7 @@ struct FfmResult {
   int outer_iterations = 0;
   long lbfgs_iterations = 0;
   long evaluations = 0;
+  long line_search_failures = 0;   // L-BFGS line searches that gave up (the better point is kept)
   double final_epsilon = 0;
   double min_det = 0;               // min D over tets (scaled space) at the end
   double seconds = 0;

@@ -1,6 +1,6 @@
 // volmap/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
 // Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
-// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2) → TLC (§6; the whole method with
+// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp) → TLC (§6; the whole method with
 // MapMethod::Tlc) → [cascade only] link-kernel relocation (§7 pre-step) → TLC with alpha 1e-8 →
 // FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation →
 // B1 cone repair (§7: NOT implemented yet, a no-op) → validity-preserving quality pass (§5).
@@ -31,6 +31,17 @@ struct VolumeMapOptions {
   bool quality_pass = true;
   int quality_iterations = 300;
   int max_threads = 0;             // 0 = TBB default; 1 = one core (benchmarks)
+  // Cascade (MapMethod::Ffm) tuning; MapMethod::Tlc gives TLC the whole budget.
+  // Fraction of the remaining time given to the first TLC stage (the tlc-small-alpha round gets 0.3 of
+  // what is left after it, FFM the rest). Kept at 0.5: measured 2026-11-23 (bench/run_map_g1.sh,
+  // MESHES=bone+duck × 5 domains, --threads 1 --time-limit 20 --no-refine --no-quality) 0.5 and 0.8
+  // both certify 8/10 with identical leftovers (bone cube 3, bone star 7 non-positive). TLC either
+  // certifies in < 0.2 s or stalls: on bone cube it stops by itself after 6.4 s (4 bad) whatever the
+  // share; on bone star 10 s → 16 s of TLC still leaves 8 bad, while FFM certifies bone octa
+  // (12–13 s) only when it keeps enough time. So a larger TLC share buys nothing measured here.
+  double tlc_time_share = 0.5;
+  int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
+  bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
 };
 
 struct VolumeMapStage {
@@ -58,10 +69,5 @@ struct VolumeMapResult {
 // Throws Error(BadInput) when the map does not match the mesh's boundary or a source tet is not
 // strictly positive.
 VolumeMapResult compute_volume_map(const TetMeshData& source, const BoundaryMap& map, const VolumeMapOptions& options = {});
-
-// Uniform-weight Tutte 3D: interior vertices at the mean of their edge neighbours, boundary fixed
-// (one sparse LDLᵀ factorisation, 3 right-hand sides). Overwrites the free entries of target_xyz.
-void tutte_uniform(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& on_boundary,
-                   std::vector<double>& target_xyz);
 
 }  // namespace volmap
