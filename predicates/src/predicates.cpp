@@ -25,6 +25,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace volmap {
 namespace {
 
@@ -350,6 +354,36 @@ int orient2d(const double* a, const double* b, const double* c) {
 }
 
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
+#if defined(__SSE2__)
+  // Stage A with the x,y columns in SSE2 pairs: the same products, minors, sums and evaluation order
+  // as orient3d_stage_a (det = (adz·m1 + bdz·m2) + cdz·m3), so Shewchuk's bound applies unchanged;
+  // only the independent operations are paired. -ffp-contract=off keeps mul and add separate.
+  const __m128d dxy = _mm_loadu_pd(d);
+  const __m128d A = _mm_sub_pd(_mm_loadu_pd(a), dxy);  // (adx, ady)
+  const __m128d B = _mm_sub_pd(_mm_loadu_pd(b), dxy);  // (bdx, bdy)
+  const __m128d C = _mm_sub_pd(_mm_loadu_pd(c), dxy);  // (cdx, cdy)
+  const __m128d Z = _mm_sub_pd(_mm_set_pd(b[2], a[2]), _mm_set1_pd(d[2]));  // (adz, bdz)
+  const double cdz = c[2] - d[2];
+  const __m128d P1 = _mm_mul_pd(B, _mm_shuffle_pd(C, C, 1));  // (bdx·cdy, bdy·cdx)
+  const __m128d P2 = _mm_mul_pd(C, _mm_shuffle_pd(A, A, 1));  // (cdx·ady, cdy·adx)
+  const __m128d P3 = _mm_mul_pd(A, _mm_shuffle_pd(B, B, 1));  // (adx·bdy, ady·bdx)
+  const __m128d L = _mm_unpacklo_pd(P1, P2), H = _mm_unpackhi_pd(P1, P2);
+  const __m128d M = _mm_sub_pd(L, H);  // (m1, m2)
+  const double p3lo = _mm_cvtsd_f64(P3), p3hi = _mm_cvtsd_f64(_mm_unpackhi_pd(P3, P3));
+  const __m128d T = _mm_mul_pd(Z, M);  // (adz·m1, bdz·m2)
+  const double det = (_mm_cvtsd_f64(T) + _mm_cvtsd_f64(_mm_unpackhi_pd(T, T))) + cdz * (p3lo - p3hi);
+  const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  const __m128d Za = _mm_and_pd(Z, abs_mask);
+  const __m128d U = _mm_mul_pd(_mm_add_pd(_mm_and_pd(L, abs_mask), _mm_and_pd(H, abs_mask)), Za);
+  const double cz = std::fabs(cdz);
+  const double permanent =
+      (_mm_cvtsd_f64(U) + _mm_cvtsd_f64(_mm_unpackhi_pd(U, U))) + (std::fabs(p3lo) + std::fabs(p3hi)) * cz;
+  const double zsum = (_mm_cvtsd_f64(Za) + _mm_cvtsd_f64(_mm_unpackhi_pd(Za, Za))) + cz;
+  const double abs_det = std::fabs(det);
+  if ((abs_det > kO3ErrA * permanent) & (abs_det >= 0x1p-590) & (permanent < kPermanentMax) & (zsum <= 0x1p400))
+    return sign_of(det);
+  return orient3d_slow(a, b, c, d, permanent);
+#else
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
@@ -357,6 +391,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
   const int s = orient3d_stage_a(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz, &permanent);
   if (s != 0) return s;
   return orient3d_slow(a, b, c, d, permanent);
+#endif
 }
 
 int incircle(const double* a, const double* b, const double* c, const double* d) {

@@ -1,0 +1,45 @@
+// volmap/cone_repair.hpp — B1 star-patch cone repair (docs/mapping.md §7).
+// For each cluster of non-positive target tets: grow a region R (a ball) until its boundary is
+// star-shaped in BOTH the target and the source (strict kernel points from a 4-variable Chebyshev
+// LP solved in double, then verified with exact orient3d), replace R by the cones from one new
+// vertex w (source p, target q) over the outward faces of ∂R, and re-insert R's old interior
+// vertices by splitting the cone tet that contains them (kept vertices; their target is a point
+// strictly inside the matching target tet). Every new tet is exactly positive in both spaces, so
+// the refined source stays a valid tetrahedralisation and the repaired map stays certifiable.
+// Conventions: flat TetMeshData, VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0); boundary
+// vertices and faces are never changed; original vertex ids kept, new vertices appended; tets of a
+// patch reuse the slots of R (extra ones appended, unused slots removed at the end).
+#pragma once
+
+#include <volmap/mesh_data.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace volmap {
+
+struct ConeRepairOptions {
+  std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
+  std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
+  int max_growth_steps = 400;         // per cluster
+  int max_rounds = 8;                 // recompute clusters and retry
+};
+
+struct ConeRepairResult {
+  std::size_t clusters = 0;           // clusters found in the first round
+  std::size_t patches = 0;            // patches applied
+  std::size_t failed_clusters = 0;    // clusters left (last round)
+  std::size_t tets_before = 0, tets_after = 0, vertices_added = 0;
+  std::size_t max_region = 0;         // largest |R| applied
+};
+
+ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_boundary,
+                             std::vector<double>& target_xyz, const ConeRepairOptions& options = {});
+
+// Strict-kernel point of a set of oriented triangles (3 vertex positions each, 9 doubles per
+// triangle; a point q is inside when orient3d(a,b,c,q) > 0 for every triangle): Chebyshev LP in
+// double, verified exactly. Returns false when no verified point was found.
+bool strict_kernel_point(const std::vector<double>& triangles, double* q);
+
+}  // namespace volmap
