@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Build the libFuzzer targets (clang, ASan + UBSan) and run each for a given time.
 #   scripts/fuzz.sh [seconds_per_target (default 20)] [target ...]
+#   Longer runs in parallel: build once, then e.g.
+#   VOLMAP_FUZZ_NO_BUILD=1 scripts/fuzz.sh 600 fuzz_medit fuzz_vtk & VOLMAP_FUZZ_NO_BUILD=1 scripts/fuzz.sh 600 fuzz_vtu ...
 # Seeds: small files from ../shared/data (read in place, copied only into the scratch build tree)
 # plus a few generated ones. Prints per target: executions, coverage, crashes. Exit 1 on a finding
 # (the crashing input is kept in build-fuzz/findings/).
@@ -13,14 +15,17 @@ BUILD=${VOLMAP_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}
 DATA=${VOLMAP_DATA:-$ROOT/../shared/data}
 JOBS=${VOLMAP_JOBS:-$(nproc)}
 
-CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOLMAP_BUILD_FUZZ=ON \
-  -DVOLMAP_BUILD_TESTS=OFF -DVOLMAP_BUILD_BENCH=OFF -DVOLMAP_BUILD_TOOLS=OFF >/dev/null
 TARGETS=("$@")
 if ((${#TARGETS[@]} == 0)); then
   TARGETS=()
   for f in "$ROOT"/fuzz/fuzz_*.cpp; do TARGETS+=("$(basename "$f" .cpp)"); done
 fi
-cmake --build "$BUILD" -j"$JOBS" --target "${TARGETS[@]}" >/dev/null
+# VOLMAP_FUZZ_NO_BUILD=1: use the targets already built (parallel invocations on one build tree).
+if [ "${VOLMAP_FUZZ_NO_BUILD:-0}" != 1 ]; then
+  CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOLMAP_BUILD_FUZZ=ON \
+    -DVOLMAP_BUILD_TESTS=OFF -DVOLMAP_BUILD_BENCH=OFF -DVOLMAP_BUILD_TOOLS=OFF >/dev/null
+  cmake --build "$BUILD" -j"$JOBS" --target "${TARGETS[@]}" >/dev/null
+fi
 
 # seed <target> <find expression...>: small data files as seeds
 seed() {
