@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     volmap::MetricsOptions options;
     options.upper = upper;
     options.keep_per_tet = !vtu_path.empty();
-    const volmap::MetricsReport r = volmap::compute_metrics(in, out, options);
+    const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
+                                                              [&] { return volmap::compute_metrics(in, out, options); });
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
       const volmap::TetMeshData original = volmap::read_medit(original_path);
