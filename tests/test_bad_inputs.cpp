@@ -323,7 +323,7 @@ struct Fixture {
     bad_mesh("m_overflow.mesh", replace_once(good_mesh, "Vertices\n27\n0 ", "Vertices\n27\n1e99999 "));
     bad_mesh("m_huge_vertices.mesh", "MeshVersionFormatted 1\nDimension 3\nVertices\n4000000000\n0 0 0 0\n");
     bad_mesh("m_huge_tets.mesh", replace_once(good_mesh, "Tetrahedra\n48", "Tetrahedra\n2000000000"));
-    bad_mesh("m_binary.mesh", std::string("\x7f\x45\x4c\x46\x00\xff\xfe\x01garbage\x00\n\x01", 20));
+    bad_mesh("m_binary.mesh", std::string("\x7f\x45\x4c\x46\x00\xff\xfe\x01garbage\x00\n\x01", 18));
     bad_mesh("m_bowtie.mesh",  // two tets sharing one vertex: not a manifold ball
              "MeshVersionFormatted 1\nDimension 3\nVertices\n7\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
              "-1 0 0 0\n0 -1 0 0\n0 0 -1 0\nTetrahedra\n2\n1 2 3 4 0\n1 5 7 6 0\nEnd\n");
