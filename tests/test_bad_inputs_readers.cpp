@@ -58,3 +58,19 @@ TEST_CASE("PLY: a huge face list size in a tiny file is refused before allocatin
   CHECK(volmap::read_surface(good.string()).num_triangles() == 1);
   fs::remove(good);
 }
+
+TEST_CASE("PLY: a face list entry far outside the integer range is refused (fuzz_surface UBSan finding)") {
+  // Found by fuzz_surface: float-typed list entries of 3.7e29 were cast to int64 (undefined behaviour).
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n0 1 0\n";
+  const auto huge = write_temp("entry.ply", header + "3 0 1 3.66667e+29\n");
+  CHECK(surface_error(huge).find("not an integer id") != std::string::npos);
+  fs::remove(huge);
+  const auto fraction = write_temp("fraction.ply", header + "3 0 1 1.5\n");
+  CHECK(surface_error(fraction).find("not an integer id") != std::string::npos);
+  fs::remove(fraction);
+  const auto nan = write_temp("nan.ply", header + "3 0 1 nan\n");
+  CHECK(!surface_error(nan).empty());
+  fs::remove(nan);
+}
