@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite on an already built tree ($1, default build/):
 #  1. predicates again in a build where the rest of the code uses -ffp-contract=fast -march=native
-#     (proves the predicates' own flags protect them);
+#     (proves the predicates' own flags protect them), then the same tests with MXCSR FTZ|DAZ set;
 #  2. install into a scratch prefix and build/run the outside consumer project against it;
 #  3. the main ctest run (default labels; set VOLMAP_LONG_TESTS=1 to include tests labelled long).
 # The main ctest summary is printed last so CI reads it.
@@ -17,6 +17,8 @@ cmake -S "$ROOT" -B "$FAST" -DCMAKE_BUILD_TYPE=Release -DVOLMAP_BUILD_LIB=OFF -D
       -DCMAKE_CXX_FLAGS="-ffp-contract=fast -march=native" >/dev/null
 cmake --build "$FAST" -j"$JOBS" >/dev/null
 ctest --test-dir "$FAST" -j"$JOBS" --output-on-failure -LE long | tail -n 3
+echo "== predicates with MXCSR flush-to-zero + denormals-are-zero set (VOLMAP_TEST_FTZ_DAZ=1)"
+VOLMAP_TEST_FTZ_DAZ=1 ctest --test-dir "$FAST" -j"$JOBS" --output-on-failure -LE long | tail -n 3
 
 echo "== install + outside consumer project"
 PREFIX=$BUILD-install

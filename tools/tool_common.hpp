@@ -23,6 +23,18 @@ constexpr int kExitBadInput = 2;
 // Runs a tool body: parses the CLI11 app, maps exceptions to exit codes with a one-line reason.
 // `body` returns the exit code. `json_mode` (when non-null and true) makes bad-input errors also
 // print {"ok":false,"error":...} on stdout so `--json` consumers always get one object.
+// Runs `f`; a volmap::Error that names no file (library functions working on arrays cannot know
+// it) is re-thrown naming `file`, so the tool's one-line reason says which input was at fault.
+template <class F>
+auto naming_file(const std::string& file, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const volmap::Error& e) {
+    if (!e.file().empty()) throw;
+    throw volmap::Error(e.kind(), file, 0, e.reason());
+  }
+}
+
 inline int run_tool(CLI::App& app, int argc, char** argv, const std::function<int()>& body,
                     const bool* json_mode = nullptr) {
   const std::string name = app.get_name();

@@ -64,8 +64,10 @@ int main(int argc, char** argv) {
     options.max_reported_bad = max_bad;
     t0 = Clock::now();
     const volmap::BoundaryMap* boundary = boundary_path.empty() ? nullptr : &map;
-    const volmap::MapCheckReport r = rational ? volmap::check_map_rational(in, rin, out, rout, boundary, options)
-                                              : volmap::check_map(in, out, boundary, options);
+    const volmap::MapCheckReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")", [&] {
+      return rational ? volmap::check_map_rational(in, rin, out, rout, boundary, options)
+                      : volmap::check_map(in, out, boundary, options);
+    });
     const double check_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const bool certified = r.certified();
 

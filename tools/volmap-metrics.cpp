@@ -16,7 +16,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace {
 nlohmann::json stats_json(const volmap::RangeStats& s) {
@@ -47,7 +49,8 @@ int main(int argc, char** argv) {
     volmap::MetricsOptions options;
     options.upper = upper;
     options.keep_per_tet = !vtu_path.empty();
-    const volmap::MetricsReport r = volmap::compute_metrics(in, out, options);
+    const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
+                                                              [&] { return volmap::compute_metrics(in, out, options); });
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
       const volmap::TetMeshData original = volmap::read_medit(original_path);
@@ -55,11 +58,18 @@ int main(int argc, char** argv) {
       original_vertices = original.num_vertices();
     }
     if (!csv_path.empty()) {
-      // Appended like VOLMAP's log (not atomic by nature: one line is added to an existing file).
-      std::ofstream log(csv_path, std::ios_base::app | std::ios_base::out);
-      if (!log) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "cannot open CSV file for appending");
-      log << volmap::format_metrics_csv_line(out_path, r) << "\n";
-      if (!log.flush()) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "write failed");
+      // Appended like VOLMAP's log, but atomically: the old content plus the new line is written to a
+      // temporary file and renamed over the log (an interrupted run never leaves a torn line).
+      std::string content;
+      if (std::filesystem::exists(csv_path)) {
+        std::ifstream old(csv_path, std::ios::binary);
+        if (!old) throw volmap::Error(volmap::ErrorKind::Io, csv_path, 0, "cannot read the CSV file to append to");
+        std::stringstream ss;
+        ss << old.rdbuf();
+        content = ss.str();
+        if (!content.empty() && content.back() != '\n') content += '\n';
+      }
+      volmap::write_text_atomically(csv_path, content + volmap::format_metrics_csv_line(out_path, r) + "\n");
     }
     if (!vtu_path.empty()) {
       // Cells in the INPUT's tet order and vertex order (the order the metrics were evaluated in).

@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
       opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
       opt.sphere_radius = volmap::kSphereRadius;
     }
-    const auto r = volmap::check_surface_map(mesh, map, domain ? &*domain : nullptr, opt);
+    const auto r = volmap_tools::naming_file(
+        map_path, [&] { return volmap::check_surface_map(mesh, map, domain ? &*domain : nullptr, opt); });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (json) {
       nlohmann::json j{{"ok", r.ok},
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
                   << r.corners_exact << "/" << r.corners_expected << "\n";
       std::cout << (r.ok ? "Check result: SUCCESS" : "Check result: FAIL (" + r.reason + ")") << "\n";
     }
-    if (!r.ok && !json) std::cerr << "volmap-surface-map-check: " << r.reason << "\n";
+    if (!r.ok && !json) std::cerr << "volmap-surface-map-check: " << map_path << ": " << r.reason << "\n";
     return r.ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
   }, &json);
 }

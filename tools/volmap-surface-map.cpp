@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
       domain = volmap::builtin_domain(domain_name);
     }
     const volmap::TetMeshData mesh = volmap::read_tet_mesh(mesh_path);
-    volmap::SurfaceMapResult r = volmap::map_surface_to_domain(mesh, domain);
+    volmap::SurfaceMapResult r =
+        volmap_tools::naming_file(mesh_path, [&] { return volmap::map_surface_to_domain(mesh, domain); });
     if (sphere)
       r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},
                                     volmap::kSphereRadius);

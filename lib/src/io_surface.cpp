@@ -284,9 +284,21 @@ SurfaceData read_ply(const std::string& path, const std::string& data) {
       for (const PlyProperty& prop : e.properties) {
         if (prop.is_list) {
           const double n = read_value(prop.count_type);
-          if (n < 0 || n > 1e9 || n != std::floor(n)) throw_bad_input(path, 0, "bad PLY list size");
+          // Validated against the bytes left before anything is allocated: every list entry takes at
+          // least 2 bytes in ASCII (digit + separator) and its type's size in binary.
+          const std::size_t left = format == 0 ? data.size() / 2 + 1 : static_cast<std::size_t>(end - p) / ply_size(prop.type);
+          if (n < 0 || n > static_cast<double>(left) || n != std::floor(n))
+            throw_bad_input(path, format == 0 ? text.line() : 0,
+                            "bad PLY list size (negative, fractional or more entries than the file holds: at most " +
+                                std::to_string(left) + ")");
           list.resize(static_cast<std::size_t>(n));
-          for (auto& v : list) v = static_cast<std::int64_t>(read_value(prop.type));
+          for (auto& v : list) {
+            // Range-checked before the conversion (a float/double entry may hold anything, e.g. 1e29).
+            const double x = read_value(prop.type);
+            if (!(x >= -0x1p62 && x <= 0x1p62) || x != std::floor(x))
+              throw_bad_input(path, format == 0 ? text.line() : 0, "PLY list entry is not an integer id");
+            v = static_cast<std::int64_t>(x);
+          }
           const bool ids = prop.name == "vertex_indices" || prop.name == "vertex_index";
           const std::int64_t nv = static_cast<std::int64_t>(s.xyz.size() / 3);
           if (face && ids) {

@@ -13,6 +13,7 @@
 // orient3d on rationals (scalar and batch) first tries a double prefilter with the conversion error
 // folded into the bound (see orient3d_rational_filter).
 #include "exact.hpp"
+#include "fp_env.hpp"
 
 #include <boost/multiprecision/cpp_int.hpp>
 #include <boost/multiprecision/gmp.hpp>
@@ -252,6 +253,7 @@ namespace volmap {
 using detail::Mpz;
 
 int orient2d(const Rational* a, const Rational* b, const Rational* c) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient2d(a, b, c));
   const Rational* p[3] = {a, b, c};
   Mpz m[3][3];
   for (int i = 0; i < 3; ++i) {
@@ -262,6 +264,7 @@ int orient2d(const Rational* a, const Rational* b, const Rational* c) {
   return detail::bareiss_sign(m);
 }
 int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rational* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d(a, b, c, d));
   const Rational* p[4] = {a, b, c, d};
   double approx[4][3];
   bool safe = true;
@@ -282,6 +285,7 @@ int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rati
   return detail::bareiss_sign(m);
 }
 int incircle(const Rational* a, const Rational* b, const Rational* c, const Rational* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(incircle(a, b, c, d));
   const Rational* p[4] = {a, b, c, d};
   Mpz m[4][4];
   for (int i = 0; i < 4; ++i) {
@@ -292,6 +296,7 @@ int incircle(const Rational* a, const Rational* b, const Rational* c, const Rati
   return detail::bareiss_sign(m);
 }
 int insphere(const Rational* a, const Rational* b, const Rational* c, const Rational* d, const Rational* e) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(insphere(a, b, c, d, e));
   const Rational* p[5] = {a, b, c, d, e};
   Mpz m[5][5];
   for (int i = 0; i < 5; ++i) {

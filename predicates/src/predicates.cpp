@@ -19,6 +19,7 @@
 #include <volmap/predicates.hpp>
 
 #include "exact.hpp"
+#include "fp_env.hpp"
 #include "expansion.hpp"
 
 #include <algorithm>
@@ -344,6 +345,7 @@ bool finite_points(const double* const* p, int n, int dim) {
 // Public scalar predicates.
 
 int orient2d(const double* a, const double* b, const double* c) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient2d(a, b, c));
   const double detleft = (a[0] - c[0]) * (b[1] - c[1]);
   const double detright = (a[1] - c[1]) * (b[0] - c[0]);
   const double det = detleft - detright;
@@ -354,6 +356,7 @@ int orient2d(const double* a, const double* b, const double* c) {
 }
 
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d(a, b, c, d));
 #if defined(__SSE2__)
   // Stage A with the x,y columns in SSE2 pairs: the same products, minors, sums and evaluation order
   // as orient3d_stage_a (det = (adz·m1 + bdz·m2) + cdz·m3), so Shewchuk's bound applies unchanged;
@@ -395,6 +398,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
 }
 
 int incircle(const double* a, const double* b, const double* c, const double* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(incircle(a, b, c, d));
   const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
   const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
   const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, alift = adx * adx + ady * ady;
@@ -412,6 +416,7 @@ int incircle(const double* a, const double* b, const double* c, const double* d)
 }
 
 int insphere(const double* a, const double* b, const double* c, const double* d, const double* e) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(insphere(a, b, c, d, e));
   const double aex = a[0] - e[0], bex = b[0] - e[0], cex = c[0] - e[0], dex = d[0] - e[0];
   const double aey = a[1] - e[1], bey = b[1] - e[1], cey = c[1] - e[1], dey = d[1] - e[1];
   const double aez = a[2] - e[2], bez = b[2] - e[2], cez = c[2] - e[2], dez = d[2] - e[2];
@@ -533,11 +538,7 @@ TetSignCounts fail(const char* reason) {
 
 TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
                             std::size_t num_tets, std::int8_t* signs) {
-#if defined(__SSE2__)
-  // Flush-to-zero / denormals-are-zero (MXCSR bits 15 and 6, set e.g. by linking with -ffast-math)
-  // break the underflow reasoning of every layer: refuse instead of returning unproven signs.
-  if (_mm_getcsr() & 0x8040u) return fail("FTZ/DAZ floating-point mode is active (unsupported)");
-#endif
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_tets(xyz, num_vertices, tets, num_tets, signs));
   const MeshCensus mesh = census(xyz, num_vertices);
   if (!mesh.finite) return fail("non-finite vertex coordinate");
   // L1 is valid when the mesh is safe and every extent is in [1e-97, 1e102) (CGAL's guards).
@@ -566,27 +567,11 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
       const double* b = xyz + 3 * std::size_t(v[1]);
       const double* c = xyz + 3 * std::size_t(v[2]);
       const double* d = xyz + 3 * std::size_t(v[3]);
-#if defined(__SSE2__)
-      // Same expression tree as below with the x,y columns paired (see orient3d()).
-      const __m128d dxy = _mm_loadu_pd(d);
-      const __m128d A = _mm_sub_pd(_mm_loadu_pd(a), dxy);
-      const __m128d B = _mm_sub_pd(_mm_loadu_pd(b), dxy);
-      const __m128d C = _mm_sub_pd(_mm_loadu_pd(c), dxy);
-      const __m128d Z = _mm_sub_pd(_mm_set_pd(b[2], a[2]), _mm_set1_pd(d[2]));
-      const double cdz = c[2] - d[2];
-      const __m128d P1 = _mm_mul_pd(B, _mm_shuffle_pd(C, C, 1));
-      const __m128d P2 = _mm_mul_pd(C, _mm_shuffle_pd(A, A, 1));
-      const __m128d P3 = _mm_mul_pd(A, _mm_shuffle_pd(B, B, 1));
-      const __m128d T = _mm_mul_pd(Z, _mm_sub_pd(_mm_unpacklo_pd(P1, P2), _mm_unpackhi_pd(P1, P2)));
-      const double det = (_mm_cvtsd_f64(T) + _mm_cvtsd_f64(_mm_unpackhi_pd(T, T))) +
-                         cdz * (_mm_cvtsd_f64(P3) - _mm_cvtsd_f64(_mm_unpackhi_pd(P3, P3)));
-#else
       const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
       const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
       const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
       const double det =
           adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-#endif
       const int s = (det > static_bound) - (det < -static_bound);
       out[t] = static_cast<std::int8_t>(s);
     }

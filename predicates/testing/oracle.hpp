@@ -11,6 +11,9 @@
 #pragma once
 
 #include <boost/multiprecision/gmp.hpp>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +51,17 @@ T laplace_det(const T* m, int n, int stride, const int* cols) {
   return sum;
 }
 
+// GMP's double -> rational conversion uses floating-point arithmetic, which MXCSR flush-to-zero /
+// denormals-are-zero would corrupt (subnormals read as 0): the oracle converts in the default
+// environment whatever the caller's is (tests/test_predicates_ftz.cpp, VOLMAP_TEST_FTZ_DAZ=1 runs).
+struct DefaultFpEnvironment {
+#if defined(__SSE2__)
+  unsigned saved = _mm_getcsr();
+  DefaultFpEnvironment() { _mm_setcsr(saved & ~0xE040u); }  // FTZ, rounding control, DAZ cleared
+  ~DefaultFpEnvironment() { _mm_setcsr(saved); }
+#endif
+};
+
 template <class T>
 T to_exact(double x) {
   return T(x);  // exact for every finite double (integers only for Z)
@@ -56,6 +70,7 @@ T to_exact(double x) {
 // `lifted`: add the |p|² column. points: npts pointers to dim coordinates; matrix is npts×npts.
 template <class T>
 int det_sign(const double* const* points, int npts, int dim, bool lifted) {
+  const DefaultFpEnvironment environment;
   T m[25];
   for (int i = 0; i < npts; ++i) {
     T lift = 0;
