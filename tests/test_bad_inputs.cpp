@@ -403,7 +403,8 @@ TEST_CASE("bad inputs: tet mesh readers and the mesh tools") {
     c.expect("volmap-map", {bad, map, "@OUT/m.mesh"}, name + "|good_map.txt", check_codes);
     c.expect("volmap-surface-map", {"cube", bad, "@OUT/map.txt"}, name, check_codes);
     c.expect("volmap-surface-map-check", {bad, map, "--domain", "cube"}, name + "|good_map.txt", check_codes);
-    c.expect("volmap-view", {bad, "-o", "@OUT/v.html"}, name);
+    // bowtie: a valid file with bad topology, which a viewer may show (like volmap-convert copies it)
+    if (name != "m_bowtie.mesh") c.expect("volmap-view", {bad, "-o", "@OUT/v.html"}, name);
   }
   // Line numbers where the case is about a line.
   c.expect("volmap-convert", {c.in("m_id_range.mesh").string(), "@OUT/x.vtk"}, line_of("m_id_range.mesh", 34));
