@@ -22,17 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("volmap_test_io_tool_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+fs::path scratch_dir() { return volmap_test::scratch_dir("io_tool"); }
+std::string read_text(const fs::path& p) { return volmap_test::read_bytes(p); }
 // Runs a shell command, returns its exit code; stdout goes to `out`.
 int run(const std::string& command, std::string* out = nullptr) {
   const fs::path capture = scratch_dir() / "stdout.txt";

@@ -1,6 +1,7 @@
 // Robustness: every prefix and many single-byte mutations of small valid files in each format must
 // either parse or throw volmap::Error — never crash, hang or throw anything else. Deterministic.
 #include <doctest/doctest.h>
+#include "test_support.hpp"
 #include <volmap/error.hpp>
 #include <volmap/io.hpp>
 #include <volmap/io_surface.hpp>
@@ -16,17 +17,8 @@ using namespace volmap;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("volmap_test_io_fuzz_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-std::string slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+fs::path scratch_dir() { return volmap_test::scratch_dir("io_fuzz"); }
+std::string slurp(const std::string& p) { return volmap_test::read_bytes(p); }
 TetMeshData small_mesh() {
   TetMeshData m;
   m.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};

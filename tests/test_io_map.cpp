@@ -19,22 +19,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("volmap_test_io_map_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch_dir() { return volmap_test::scratch_dir("io_map"); }
 std::string write_text(const std::string& name, const std::string& text) {
-  const fs::path p = scratch_dir() / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return volmap_test::write_bytes(scratch_dir() / name, text);
 }
-std::string read_text(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string read_text(const std::string& p) { return volmap_test::read_bytes(p); }
 
 // Two tets sharing a face plus one interior vertex would need more; here: a tet split at an
 // interior vertex 4 (4 tets), boundary vertices 0..3.

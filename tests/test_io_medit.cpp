@@ -18,16 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("volmap_test_io_medit_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch_dir() { return volmap_test::scratch_dir("io_medit"); }
 
 std::string write_text(const std::string& name, const std::string& text) {
-  const fs::path p = scratch_dir() / name;
-  std::ofstream(p, std::ios::binary) << text;
-  return p.string();
+  return volmap_test::write_bytes(scratch_dir() / name, text);
 }
 
 // Parses `text` and returns the thrown error (or fails the test when nothing is thrown).

@@ -20,15 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("volmap_test_io_vtk_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch_dir() { return volmap_test::scratch_dir("io_vtk"); }
 std::string write_bytes(const std::string& name, const std::string& bytes) {
-  const fs::path p = scratch_dir() / name;
-  std::ofstream(p, std::ios::binary) << bytes;
-  return p.string();
+  return volmap_test::write_bytes(scratch_dir() / name, bytes);
 }
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);

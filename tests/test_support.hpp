@@ -3,7 +3,10 @@
 #pragma once
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <unistd.h>
 
 namespace volmap_test {
 
@@ -27,6 +30,27 @@ inline std::filesystem::path data_file(const std::string& relative) {
 // Path of a built tool (build/bin/volmap-*).
 inline std::filesystem::path tool(const std::string& name) {
   return std::filesystem::path(VOLMAP_BIN_DIR) / name;
+}
+
+// A per-process scratch folder for a test file's generated inputs: <tmp>/volmap_test_<tag>_<pid>.
+inline std::filesystem::path scratch_dir(const std::string& tag) {
+  auto d = std::filesystem::temp_directory_path() / ("volmap_test_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// Writes `bytes` to `path` (binary) and returns the path as a string.
+inline std::string write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path.string();
+}
+
+// A whole file as bytes ("" when it cannot be read).
+inline std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 }  // namespace volmap_test
