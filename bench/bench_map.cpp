@@ -4,7 +4,8 @@
 
 #include <volmap/cone_repair.hpp>
 #include <volmap/ffm.hpp>
-#include <volmap/predicates.hpp>
+
+#include "../tests/map_test_meshes.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -19,31 +20,10 @@ struct Grid {
   std::vector<std::uint8_t> bnd;
 };
 
+// The library's unit-cube Kuhn grid (volmap/generate.hpp) with its boundary flags.
 Grid kuhn(int n) {
-  Grid g;
-  auto id = [n](int i, int j, int k) { return std::uint32_t((i * (n + 1) + j) * (n + 1) + k); };
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      for (int k = 0; k <= n; ++k) {
-        g.xyz.insert(g.xyz.end(), {double(i) / n, double(j) / n, double(k) / n});
-        g.bnd.push_back(i == 0 || j == 0 || k == 0 || i == n || j == n || k == n);
-      }
-  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          std::uint32_t t[4];
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            c[p[s]] += 1;
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          if (volmap::orient3d(&g.xyz[3 * t[0]], &g.xyz[3 * t[1]], &g.xyz[3 * t[2]], &g.xyz[3 * t[3]]) < 0) std::swap(t[2], t[3]);
-          g.tets.insert(g.tets.end(), t, t + 4);
-        }
-  return g;
+  volmap::TetMeshData d = map_test::kuhn_grid(n);
+  return {std::move(d.xyz), std::move(d.tets), map_test::grid_boundary_flags(n)};
 }
 
 void BM_FfmEnergyGradient(benchmark::State& state) {

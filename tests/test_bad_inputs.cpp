@@ -11,6 +11,8 @@
 // Tools that are not built (e.g. volmap-view on a branch without it) are skipped with a message.
 #include <doctest/doctest.h>
 
+#include <volmap/generate.hpp>
+
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -117,7 +119,8 @@ std::vector<std::string> listing(const fs::path& dir) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Good inputs: an n³ Kuhn grid of [0,n]³ (6 VOLMAP-positive tets per cube) and its identity boundary map.
+// Good inputs: the library's n³ Kuhn grid of [0,n]³ (6 VOLMAP-positive tets per cube) and its identity
+// boundary map.
 struct Grid {
   std::vector<double> xyz;
   std::vector<std::uint32_t> tets;  // 0-based
@@ -125,40 +128,13 @@ struct Grid {
 };
 
 Grid kuhn_grid(int n) {
-  Grid g;
-  const int m = n + 1;
-  auto id = [m](int i, int j, int k) { return std::uint32_t(i + m * (j + m * k)); };
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        g.xyz.insert(g.xyz.end(), {double(i), double(j), double(k)});
-        g.boundary.push_back(i == 0 || j == 0 || k == 0 || i == n || j == n || k == n);
-      }
-  static const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& path : paths) {
-          int c[3] = {i, j, k};
-          std::uint32_t t[4];
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[path[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          // Orientation with integer coordinates (exact in doubles); make it positive.
-          auto p = [&](int v) { return &g.xyz[3 * t[v]]; };
-          double a[3], b[3], d[3];
-          for (int q = 0; q < 3; ++q) {
-            a[q] = p(0)[q] - p(3)[q];
-            b[q] = p(1)[q] - p(3)[q];
-            d[q] = p(2)[q] - p(3)[q];
-          }
-          const double det = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
-                             a[2] * (b[0] * d[1] - b[1] * d[0]);
-          if (det < 0) std::swap(t[0], t[1]);
-          g.tets.insert(g.tets.end(), t, t + 4);
-        }
+  volmap::TetMeshData d = volmap::generate_kuhn_grid(std::size_t(n), std::size_t(n), std::size_t(n));
+  Grid g{std::move(d.xyz), std::move(d.tets), {}};
+  for (std::size_t v = 0; v < g.xyz.size() / 3; ++v) {
+    bool on_boundary = false;
+    for (int a = 0; a < 3; ++a) on_boundary = on_boundary || g.xyz[3 * v + a] == 0 || g.xyz[3 * v + a] == n;
+    g.boundary.push_back(on_boundary);
+  }
   return g;
 }
 

@@ -1,8 +1,9 @@
-// Shared by tests/test_view*.cpp: a small synthetic tet mesh (Freudenthal split of an n^3 grid,
-// VOLMAP-positive after exact orientation fix-up), a twisted copy with some tets pushed through
+// Shared by tests/test_view*.cpp: a small synthetic tet mesh (the library's Kuhn grid of the unit
+// cube, VOLMAP-positive), a twisted copy with some tets pushed through
 // their opposite face (inverted), a base64 decoder and HTML helpers.
 #pragma once
 
+#include <volmap/generate.hpp>
 #include <volmap/mesh_data.hpp>
 #include <volmap/predicates.hpp>
 
@@ -16,40 +17,8 @@
 
 namespace view_test {
 
-inline volmap::TetMeshData grid_mesh(int n) {
-  volmap::TetMeshData m;
-  auto vid = [n](int i, int j, int k) { return std::uint32_t((i * (n + 1) + j) * (n + 1) + k); };
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      for (int k = 0; k <= n; ++k) {
-        m.xyz.push_back(double(i) / n);
-        m.xyz.push_back(double(j) / n);
-        m.xyz.push_back(double(k) / n);
-      }
-  // Freudenthal / Kuhn: 6 tets per cube along the main diagonal, conforming across cubes.
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          std::array<std::uint32_t, 4> t;
-          t[0] = vid(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            c[p[s]] += 1;
-            t[s + 1] = vid(c[0], c[1], c[2]);
-          }
-          const double* a = &m.xyz[3 * t[0]];
-          const double* b = &m.xyz[3 * t[1]];
-          const double* cc = &m.xyz[3 * t[2]];
-          const double* d = &m.xyz[3 * t[3]];
-          if (volmap::orient3d(a, b, cc, d) < 0) std::swap(t[0], t[1]);
-          m.tets.insert(m.tets.end(), t.begin(), t.end());
-        }
-  m.vertex_labels.assign(m.num_vertices(), 0);
-  m.tet_labels.assign(m.num_tets(), 0);
-  return m;
-}
+// The library's Kuhn grid of the unit cube (volmap/generate.hpp): n^3 cubes, 6 VOLMAP-positive tets each.
+inline volmap::TetMeshData grid_mesh(int n) { return volmap::generate_kuhn_unit_cube(std::size_t(n)); }
 
 // Scaled by 100 (like the VOLMAP domains) and twisted about z; interior vertices near the centre are
 // pushed so that a few tets invert.

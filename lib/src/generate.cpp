@@ -66,4 +66,11 @@ TetMeshData generate_kuhn_grid(std::size_t nx, std::size_t ny, std::size_t nz, d
   return generate_kuhn_grid(nx, ny, nz, nullptr, spacing);
 }
 
+TetMeshData generate_kuhn_unit_cube(std::size_t n) {
+  TetMeshData d = generate_kuhn_grid(n, n, n);
+  const double scale = double(n);
+  for (double& c : d.xyz) c /= scale;  // integer / n: one rounding, exact 0 and 1
+  return d;
+}
+
 }  // namespace volmap

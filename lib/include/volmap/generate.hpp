@@ -21,4 +21,9 @@ TetMeshData generate_kuhn_grid(std::size_t nx, std::size_t ny, std::size_t nz,
                                const std::function<bool(std::size_t, std::size_t, std::size_t)>& keep,
                                double spacing = 1.0);
 
+// The unit cube [0,1]^3 cut into n x n x n cubes: generate_kuhn_grid(n, n, n) with every coordinate
+// divided by n, so vertex (i,j,k) is at exactly (i/n, j/n, k/n) rounded once and the boundary lies
+// exactly on the planes 0 and 1 (spacing = 1.0/n does not guarantee it: 49 * (1.0/49) < 1).
+TetMeshData generate_kuhn_unit_cube(std::size_t n);
+
 }  // namespace volmap
