@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <utility>
 #include <vector>
 
 #ifdef VOLMAP_HAVE_CGAL
@@ -48,9 +49,7 @@ Tuples make_tuples(Set set, int dim, int npts) {
       for (int i = 0; i < 5; ++i)
         for (int k = 0; k < 3; ++k) q[i][k] = u(rng);
     } else if (dim == 2 && npts == 3) {
-      for (int k = 0; k < 2; ++k) q[0][k] = u(rng), q[1][k] = u(rng);
-      const double s = u(rng);
-      for (int k = 0; k < 2; ++k) q[2][k] = q[0][k] + s * (q[1][k] - q[0][k]);
+      or_::near_collinear(rng, q[0], q[1], q[2]);
     } else if (dim == 3 && npts == 4) {
       or_::near_coplanar(rng, q[0], q[1], q[2], q[3]);
     } else if (dim == 2) {
@@ -182,47 +181,15 @@ struct Mesh {
   std::size_t degenerate = 0;  // exactly flat tets
 };
 
-// n³ cubes of edge 2^-6 (exact), 6 positively oriented tets per cube (Kuhn / Freudenthal).
-Mesh kuhn(int n) {
-  Mesh m;
-  const int s = n + 1;
-  const double h = 1.0 / 64;
-  m.xyz.reserve(std::size_t(s) * s * s * 3);
-  for (int k = 0; k < s; ++k)
-    for (int j = 0; j < s; ++j)
-      for (int i = 0; i < s; ++i) {
-        m.xyz.push_back(i * h);
-        m.xyz.push_back(j * h);
-        m.xyz.push_back(k * h);
-      }
-  auto id = [s](int i, int j, int k) { return std::uint32_t((k * s + j) * s + i); };
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  m.tets.reserve(std::size_t(n) * n * n * 24);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          std::uint32_t v[4];
-          v[0] = id(c[0], c[1], c[2]);
-          for (int q = 0; q < 3; ++q) {
-            c[p[q]] += 1;
-            v[q + 1] = id(c[0], c[1], c[2]);
-          }
-          const bool even = (p[0] == 0 && p[1] == 1) || (p[0] == 1 && p[1] == 2) || (p[0] == 2 && p[1] == 0);
-          if (even) std::swap(v[0], v[1]);
-          m.tets.insert(m.tets.end(), v, v + 4);
-        }
-  return m;
-}
-
 constexpr int kGrid = 56;  // 56³·6 = 1 053 696 tets
 
 const Mesh& mesh(int variant) {  // 0 clean, 1 half flattened onto z = c, 2 half onto a tilted plane
   static Mesh cache[3];
   Mesh& m = cache[variant];
   if (m.tets.empty()) {
-    m = kuhn(kGrid);
+    or_::IndexedTets grid = or_::kuhn_grid(kGrid, 1.0 / 64);  // cubes of edge 2^-6: exact coordinates
+    m.xyz = std::move(grid.xyz);
+    m.tets = std::move(grid.tets);
     const double zc = (kGrid / 2) / 64.0;
     for (std::size_t v = 0; v < m.xyz.size() / 3; ++v) {
       double* p = &m.xyz[3 * v];

@@ -24,38 +24,6 @@ int perm_sign3(const double* const* p, const int* idx) {
   return volmap::orient3d(p[idx[0]], p[idx[1]], p[idx[2]], p[idx[3]]);
 }
 
-// Kuhn grid of n³ cubes (6 tets each), tets positively oriented; vertex (i,j,k) at scale*(i,j,k)+shift.
-void kuhn_grid(int n, double scale, double shift, std::vector<double>& xyz, std::vector<std::uint32_t>& tets) {
-  const int m = n + 1;
-  xyz.clear();
-  tets.clear();
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        xyz.push_back(shift + scale * i);
-        xyz.push_back(shift + scale * j);
-        xyz.push_back(shift + scale * k);
-      }
-  auto id = [m](int i, int j, int k) { return std::uint32_t((k * m + j) * m + i); };
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& p : perms) {
-          int c[3] = {i, j, k};
-          std::uint32_t v[4];
-          v[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            c[p[s]] += 1;
-            v[s + 1] = id(c[0], c[1], c[2]);
-          }
-          // identity path has orient3d = -1; odd permutations +1
-          const bool even = (p[0] == 0 && p[1] == 1) || (p[0] == 1 && p[1] == 2) || (p[0] == 2 && p[1] == 0);
-          if (even) std::swap(v[0], v[1]);
-          tets.insert(tets.end(), v, v + 4);
-        }
-}
-
 }  // namespace
 
 TEST_CASE("orient2d: Kettner ulp grid is exact (naive double is not)") {
@@ -335,9 +303,9 @@ TEST_CASE("non-finite input: checked variants throw, batch reports !ok") {
 }
 
 TEST_CASE("batch orient3d_tets: Kuhn grid, flattened region, far-away copy, cross-checked") {
-  std::vector<double> xyz;
-  std::vector<std::uint32_t> tets;
-  kuhn_grid(8, 0.125, 0.0, xyz, tets);
+  or_::IndexedTets grid = or_::kuhn_grid(8, 0.125);
+  std::vector<double>& xyz = grid.xyz;
+  const std::vector<std::uint32_t>& tets = grid.tets;
   const std::size_t nv = xyz.size() / 3, nt = tets.size() / 4;
   std::vector<std::int8_t> signs(nt);
   auto r = volmap::orient3d_tets(xyz.data(), nv, tets.data(), nt, signs.data());
@@ -450,9 +418,9 @@ TEST_CASE("rational predicates agree with the double ones and with the mpq oracl
     CHECK(volmap::orient3d(f, e, g, o) == -1);
   }
   // rational batch
-  std::vector<double> xyz;
-  std::vector<std::uint32_t> tets;
-  kuhn_grid(3, 1.0 / 3, 0.0, xyz, tets);
+  const or_::IndexedTets grid = or_::kuhn_grid(3, 1.0 / 3);
+  const std::vector<double>& xyz = grid.xyz;
+  const std::vector<std::uint32_t>& tets = grid.tets;
   std::vector<Rational> rx(xyz.size());
   for (std::size_t i = 0; i < xyz.size(); ++i) rx[i] = Rational(long(std::lround(xyz[i] * 3))) / 3;
   auto r = volmap::orient3d_tets(rx.data(), rx.size() / 3, tets.data(), tets.size() / 4, nullptr);

@@ -76,11 +76,7 @@ struct DoubleSource {
         if (dim == 3 && n == 4) or_::near_coplanar(rng, p[0], p[1], p[2], p[3]);
         else if (dim == 2 && n == 4) or_::near_cocircular(rng, p[0], p[1], p[2], p[3]);
         else if (dim == 3 && n == 5) or_::near_cospherical(rng, p[0], p[1], p[2], p[3], p[4]);
-        else {  // orient2d: rounded point on a line
-          for (int k = 0; k < 2; ++k) p[0][k] = u(rng), p[1][k] = u(rng);
-          const double t = u(rng);
-          for (int k = 0; k < 2; ++k) p[2][k] = p[0][k] + t * (p[1][k] - p[0][k]);
-        }
+        else or_::near_collinear(rng, p[0], p[1], p[2]);  // orient2d: rounded point on a line
     }
   }
 };

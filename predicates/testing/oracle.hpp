@@ -1,5 +1,6 @@
 // oracle.hpp — independent exact oracle and hard-case generators for testing volmap predicates.
-// Used by tests/test_predicates*.cpp and tools/volmap-predicates-selftest.cpp only (not installed).
+// Used by tests/test_predicates*.cpp, bench/bench_predicates.cpp and tools/volmap-predicates-selftest.cpp
+// only (not installed, not part of the predicates library).
 //
 // The oracle never calls volmap code: every coordinate is converted exactly to a GMP rational (or a
 // GMP integer when the caller knows the coordinates are integers) and the predicate is evaluated as the
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace volmap_oracle {
@@ -180,6 +182,15 @@ void near_coplanar(Rng& rng, double* a, double* b, double* c, double* d) {
   for (int k = 0; k < 3; ++k) d[k] = a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]);
 }
 
+// Near-collinear (2D): c = fl(a + s(b−a)) for random a, b in [-1,1]^2, s in [-1,1].
+template <class Rng>
+void near_collinear(Rng& rng, double* a, double* b, double* c) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 2; ++k) a[k] = u(rng), b[k] = u(rng);
+  const double s = u(rng);
+  for (int k = 0; k < 2; ++k) c[k] = a[k] + s * (b[k] - a[k]);
+}
+
 // Near-cocircular (2D): d = rounded point on the circle through rounded a, b, c (center o, radius r).
 template <class Rng>
 void near_cocircular(Rng& rng, double* a, double* b, double* c, double* d) {
@@ -207,6 +218,47 @@ void near_cospherical(Rng& rng, double* a, double* b, double* c, double* d, doub
     const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int k = 0; k < 3; ++k) p[i][k] = o[k] + r * v[k] / n;
   }
+}
+
+// Indexed Kuhn grid for the batch orient3d_tets: n³ cubes, 6 tets per cube (paths corner to opposite
+// corner along the axes in every order, conforming), vertex (i,j,k) at shift + spacing·(i,j,k) with id
+// i + (n+1)(j + (n+1)k). Every tet is positive (orient3d > 0): the path along x, y, z in order is
+// negative, so the even axis orders get v0 and v1 swapped (parity only, no predicate is called).
+struct IndexedTets {
+  std::vector<double> xyz;
+  std::vector<std::uint32_t> tets;
+};
+
+inline IndexedTets kuhn_grid(int n, double spacing, double shift = 0.0) {
+  IndexedTets g;
+  const int m = n + 1;
+  g.xyz.reserve(std::size_t(m) * m * m * 3);
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        g.xyz.push_back(shift + spacing * i);
+        g.xyz.push_back(shift + spacing * j);
+        g.xyz.push_back(shift + spacing * k);
+      }
+  auto id = [m](int i, int j, int k) { return std::uint32_t((k * m + j) * m + i); };
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  g.tets.reserve(std::size_t(n) * n * n * 24);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::uint32_t v[4];
+          v[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            c[p[s]] += 1;
+            v[s + 1] = id(c[0], c[1], c[2]);
+          }
+          const bool even = (p[0] == 0 && p[1] == 1) || (p[0] == 1 && p[1] == 2) || (p[0] == 2 && p[1] == 0);
+          if (even) std::swap(v[0], v[1]);
+          g.tets.insert(g.tets.end(), v, v + 4);
+        }
+  return g;
 }
 
 }  // namespace volmap_oracle
