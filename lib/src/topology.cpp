@@ -1,5 +1,7 @@
-// analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for components,
-// per-vertex link walks over a CSR of boundary faces. Conventions in topology.hpp.
+// analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components;
+// its boundary triangles go through analyze_surface_topology (sorted edge keys, union-find components
+// with per-component chi, per-vertex link union-find over a CSR of incident triangles), which the
+// surface checks (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
 #include <volmap/topology.hpp>
 
 #include <volmap/error.hpp>
@@ -19,6 +21,10 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 struct UnionFind {
   std::vector<std::uint32_t> parent;
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  void reset(std::size_t n) {
+    parent.resize(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+  }
   std::uint32_t find(std::uint32_t x) {
     while (parent[x] != x) {
       parent[x] = parent[parent[x]];
@@ -33,11 +39,7 @@ struct UnionFind {
   }
 };
 
-// CSR of (key -> values) by counting sort; values of one key keep insertion order.
-struct Csr {
-  std::vector<std::uint32_t> offsets;
-  std::vector<std::uint32_t> values;
-};
+std::string fmt(std::size_t n) { return std::to_string(n); }
 
 }  // namespace
 
@@ -99,7 +101,7 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   for (std::size_t t = 0; t < nt; ++t)
     if (!degenerate[t] && tet_sets.find(std::uint32_t(t)) == t) ++r.num_tet_components;
 
-  // Boundary triangles (outward windings), vertex -> boundary faces CSR.
+  // Boundary triangles (outward windings) -> the triangle-surface topology.
   const std::size_t nf = bhf.size();
   r.num_boundary_faces = nf;
   std::vector<std::uint32_t> tri(3 * nf);
@@ -108,109 +110,17 @@ TopologyReport analyze_topology(const TetMeshData& data) {
     const std::uint8_t* lf = kTetFace[bhf[f] & 3];
     for (int k = 0; k < 3; ++k) tri[3 * f + k] = p[lf[k]];
   }
-  Csr vf;
-  vf.offsets.assign(nv + 2, 0);
-  for (std::uint32_t v : tri) ++vf.offsets[std::size_t(v) + 2];
-  for (std::size_t v = 2; v < vf.offsets.size(); ++v) vf.offsets[v] += vf.offsets[v - 1];
-  vf.values.resize(3 * nf);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) vf.values[vf.offsets[std::size_t(tri[3 * f + k]) + 1]++] = std::uint32_t(f);
-  for (std::size_t v = 0; v < nv; ++v) r.num_boundary_vertices += vf.offsets[v + 1] > vf.offsets[v] ? 1 : 0;
-
-  // Boundary edges: each triangle edge (u,v) filed under min(u,v); count faces per edge.
-  UnionFind vsets(nv);
-  std::vector<std::uint32_t> others;  // per-vertex scratch
-  for (std::size_t v = 0; v < nv; ++v) {
-    const std::uint32_t b = vf.offsets[v], e = vf.offsets[v + 1];
-    if (b == e) continue;
-    others.clear();
-    for (std::uint32_t k = b; k < e; ++k) {
-      const std::uint32_t* t3 = &tri[3 * std::size_t(vf.values[k])];
-      for (int j = 0; j < 3; ++j)
-        if (t3[j] > v) others.push_back(t3[j]);
-    }
-    std::sort(others.begin(), others.end());
-    std::size_t i = 0;
-    while (i < others.size()) {
-      std::size_t j = i + 1;
-      while (j < others.size() && others[j] == others[i]) ++j;
-      ++r.num_boundary_edges;
-      vsets.unite(std::uint32_t(v), others[i]);
-      const std::size_t m = j - i;
-      if (m != 2) {
-        ++r.num_nonmanifold_boundary_edges;
-        if (m == 1) ++r.num_border_edges;
-        else ++r.num_overshared_edges;
-        if (r.example_nonmanifold_edge_vertex == kNone) r.example_nonmanifold_edge_vertex = std::uint32_t(v);
-      }
-      i = j;
-    }
-  }
-  for (std::size_t v = 0; v < nv; ++v)
-    if (vf.offsets[v + 1] > vf.offsets[v] && vsets.find(std::uint32_t(v)) == v) ++r.num_boundary_components;
-
-  // Vertex links: the opposite edges of the boundary faces around v must form one cycle (or one
-  // path, for a vertex on a border), i.e. every link vertex has degree 2 (1 at path ends) and the
-  // link is connected.
-  std::vector<std::uint32_t> link, ends;
-  std::vector<char> seen;
-  for (std::size_t v = 0; v < nv; ++v) {
-    const std::uint32_t b = vf.offsets[v], e = vf.offsets[v + 1];
-    if (b == e) continue;
-    link.clear();
-    for (std::uint32_t k = b; k < e; ++k) {
-      const std::uint32_t* t3 = &tri[3 * std::size_t(vf.values[k])];
-      for (int j = 0; j < 3; ++j)
-        if (t3[j] == v) {
-          link.push_back(t3[(j + 1) % 3]);
-          link.push_back(t3[(j + 2) % 3]);
-        }
-    }
-    ends = link;
-    std::sort(ends.begin(), ends.end());
-    bool ok = true;
-    std::size_t degree1 = 0;
-    std::uint32_t start = link[0];
-    for (std::size_t i = 0; i < ends.size() && ok;) {
-      std::size_t j = i + 1;
-      while (j < ends.size() && ends[j] == ends[i]) ++j;
-      if (j - i == 1) {
-        ++degree1;
-        start = ends[i];
-      } else if (j - i != 2) {
-        ok = false;
-      }
-      i = j;
-    }
-    if (ok && degree1 != 0 && degree1 != 2) ok = false;
-    if (ok) {  // connected: walk from `start` along unused link edges
-      const std::size_t ne = link.size() / 2;
-      std::size_t walked = 0;
-      std::uint32_t cur = start;
-      seen.assign(ne, 0);  // O(k^2) walk: links are small
-      for (;;) {
-        std::size_t k = 0;
-        for (; k < ne; ++k) {
-          if (seen[k]) continue;
-          const std::uint32_t p = link[2 * k], q = link[2 * k + 1];
-          if (p == cur || q == cur) {
-            seen[k] = 1;
-            cur = p == cur ? q : p;
-            ++walked;
-            break;
-          }
-        }
-        if (k == ne) break;
-      }
-      ok = walked == ne;
-    }
-    if (!ok) {
-      ++r.num_nonmanifold_boundary_vertices;
-      if (r.example_nonmanifold_vertex == kNone) r.example_nonmanifold_vertex = std::uint32_t(v);
-    }
-  }
-
-  r.boundary_euler = (long long)r.num_boundary_vertices - (long long)r.num_boundary_edges + (long long)nf;
+  const SurfaceTopology s = analyze_surface_topology(nv, tri);
+  r.num_boundary_vertices = s.num_used_vertices;
+  r.num_boundary_edges = s.num_edges;
+  r.num_border_edges = s.num_border_edges;
+  r.num_overshared_edges = s.num_overshared_edges;
+  r.num_nonmanifold_boundary_edges = s.num_border_edges + s.num_overshared_edges;
+  r.example_nonmanifold_edge_vertex = s.example_nonmanifold_edge_vertex;
+  r.num_nonmanifold_boundary_vertices = s.num_nonmanifold_vertices;
+  r.example_nonmanifold_vertex = s.example_nonmanifold_vertex;
+  r.num_boundary_components = s.num_components;
+  r.boundary_euler = s.euler;
   const long long twice_genus = 2 * (long long)r.num_boundary_components - r.boundary_euler;
   r.boundary_genus = twice_genus >= 0 ? twice_genus / 2 : -((-twice_genus + 1) / 2);
 
@@ -227,6 +137,143 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   r.no_degenerate_tets = r.num_degenerate_tets == 0;
   r.no_unused_vertices = r.num_unused_vertices == 0;
   return r;
+}
+
+SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris) {
+  if (tris.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "triangle array size is not a multiple of 3");
+  if (num_vertices >= 0xFFFFFFFFu) throw Error(ErrorKind::Unsupported, "", 0, "too many vertices");
+  SurfaceTopology st;
+  st.num_vertices = num_vertices;
+  const std::size_t n_all = tris.size() / 3;
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    if (tris[i] >= num_vertices)
+      throw Error(ErrorKind::BadInput, "", 0,
+                  "triangle " + fmt(i / 3) + " refers to vertex " + fmt(tris[i]) + " of " + fmt(num_vertices));
+
+  // Valid triangles only.
+  std::vector<std::uint32_t> valid;
+  valid.reserve(n_all);
+  for (std::size_t t = 0; t < n_all; ++t) {
+    const std::uint32_t *v = &tris[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      ++st.num_repeated_id_triangles;
+    else
+      valid.push_back(std::uint32_t(t));
+  }
+  st.num_triangles = valid.size();
+
+  // Edges: (lo, hi) keys with the traversal direction, sorted.
+  struct HalfEdge {
+    std::uint64_t key;
+    std::uint32_t forward;  // 1 when traversed lo -> hi
+  };
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(3 * valid.size());
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
+      half_edges.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1u : 0u});
+    }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+
+  UnionFind sets(num_vertices);
+  for (std::uint32_t t : valid) {
+    sets.unite(tris[3 * t], tris[3 * t + 1]);
+    sets.unite(tris[3 * t], tris[3 * t + 2]);
+  }
+  std::vector<std::uint8_t> used(num_vertices, 0);
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) used[tris[3 * t + k]] = 1;
+
+  // Per-component V, E, F -> chi_i.
+  std::vector<long long> comp_chi(num_vertices, 0);
+  for (std::size_t v = 0; v < num_vertices; ++v)
+    if (used[v]) {
+      ++st.num_used_vertices;
+      ++comp_chi[sets.find(std::uint32_t(v))];
+      if (sets.find(std::uint32_t(v)) == v) ++st.num_components;
+    }
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i;
+    std::uint32_t forward = 0;
+    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) forward += half_edges[j++].forward;
+    const std::size_t count = j - i;
+    ++st.num_edges;
+    --comp_chi[sets.find(std::uint32_t(half_edges[i].key >> 32))];
+    if (count == 1) ++st.num_border_edges;
+    if (count > 2) ++st.num_overshared_edges;
+    if (count != 2 && st.example_nonmanifold_edge_vertex == kNone)
+      st.example_nonmanifold_edge_vertex = std::uint32_t(half_edges[i].key >> 32);
+    if (count == 2 && forward != 1) ++st.num_inconsistent_edges;
+    i = j;
+  }
+  for (std::uint32_t t : valid) ++comp_chi[sets.find(tris[3 * t])];
+  st.euler = (long long)st.num_used_vertices - (long long)st.num_edges + (long long)st.num_triangles;
+
+  // Vertex links: vertex -> incident valid triangles (CSR), then per vertex a small union-find over
+  // the link's vertices; a manifold vertex has one link component and link degrees <= 2.
+  std::vector<std::uint32_t> offsets(num_vertices + 1, 0);
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) ++offsets[tris[3 * t + k] + 1];
+  for (std::size_t v = 0; v < num_vertices; ++v) offsets[v + 1] += offsets[v];
+  std::vector<std::uint32_t> incident(offsets.back());
+  {
+    std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (std::uint32_t t : valid)
+      for (int k = 0; k < 3; ++k) incident[fill[tris[3 * t + k]]++] = t;
+  }
+  std::vector<std::uint32_t> link_vertices, link_degree;
+  UnionFind link_sets(0);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t begin = offsets[v], end = offsets[v + 1];
+    if (begin == end) continue;
+    link_vertices.clear();
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = tris[3 * incident[i] + k];
+        if (w != v) link_vertices.push_back(w);
+      }
+    std::sort(link_vertices.begin(), link_vertices.end());
+    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()), link_vertices.end());
+    const std::size_t m = link_vertices.size();
+    link_sets.reset(m);
+    link_degree.assign(m, 0);
+    auto local = [&](std::uint32_t w) {
+      return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
+    };
+    for (std::uint32_t i = begin; i < end; ++i) {
+      std::uint32_t ends[2], n = 0;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = tris[3 * incident[i] + k];
+        if (w != v) ends[n++] = local(w);
+      }
+      link_sets.unite(ends[0], ends[1]);
+      ++link_degree[ends[0]];
+      ++link_degree[ends[1]];
+    }
+    std::size_t link_components = 0;
+    bool degree_ok = true;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      if (link_sets.find(i) == i) ++link_components;
+      if (link_degree[i] > 2) degree_ok = false;
+    }
+    if (link_components != 1 || !degree_ok) {
+      ++st.num_nonmanifold_vertices;
+      if (st.example_nonmanifold_vertex == kNone) st.example_nonmanifold_vertex = std::uint32_t(v);
+    }
+  }
+
+  st.genus_defined = st.num_triangles > 0 && st.num_border_edges == 0 && st.num_overshared_edges == 0 &&
+                     st.num_nonmanifold_vertices == 0;
+  if (st.genus_defined) {
+    for (std::size_t v = 0; v < num_vertices; ++v)
+      if (used[v] && sets.find(std::uint32_t(v)) == v) {
+        const long long g = (2 - comp_chi[v]) / 2;
+        st.genus += g;
+        if (g != 0) ++st.num_nonzero_genus_components;
+      }
+  }
+  return st;
 }
 
 }  // namespace volmap

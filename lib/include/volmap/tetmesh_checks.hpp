@@ -73,26 +73,7 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
 void flip_all_tets(TetMeshData& mesh);
 
 // ---- surfaces ------------------------------------------------------------------------------------
-struct SurfaceTopology {
-  std::size_t num_vertices = 0;          // vertices in the arrays
-  std::size_t num_used_vertices = 0;     // referenced by a valid triangle
-  std::size_t num_triangles = 0;         // valid triangles (three distinct ids)
-  std::size_t num_repeated_id_triangles = 0;  // triangles repeating a vertex id (ignored elsewhere)
-  std::size_t num_edges = 0;
-  std::size_t num_border_edges = 0;      // on one triangle
-  std::size_t num_overshared_edges = 0;  // on more than two triangles
-  std::size_t num_inconsistent_edges = 0;  // on two triangles that traverse it the same way
-  std::size_t num_nonmanifold_vertices = 0;  // link is not a single cycle / single path
-  std::size_t num_components = 0;        // vertex-connected components of the triangles
-  long long euler = 0;                   // V - E + F (used vertices)
-  bool genus_defined = false;            // closed 2-manifold: genus = sum over components (2 - chi_i)/2
-  long long genus = 0;
-  std::size_t num_nonzero_genus_components = 0;
-};
-
-// Triangle surface topology on flat arrays (tris: 3 ids per triangle, 0-based). Throws
-// Error(BadInput) for ids out of range.
-SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris);
+// SurfaceTopology and analyze_surface_topology: topology.hpp (shared with analyze_topology).
 
 struct SurfaceCheckReport {
   SurfaceTopology topology;

@@ -8,6 +8,8 @@
 // The boundary surface is the set of boundary faces; its Euler characteristic is chi = V - E + F over
 // boundary vertices/edges/faces, its components are vertex-connected components, and its genus is
 // (2*components - chi)/2 (meaningful when the surface is a closed 2-manifold).
+// The boundary surface counts (edges, vertex links, components, chi) come from analyze_surface_topology,
+// the same code the surface checks of a triangle surface use (tetmesh_checks.hpp).
 // Implementation: flat arrays, counting sorts and small sorts, union-find; no maps.
 #pragma once
 
@@ -66,5 +68,32 @@ struct TopologyReport {
 
 // Throws Error(BadInput) only when the arrays are malformed (sizes, ids out of range).
 TopologyReport analyze_topology(const TetMeshData& data);
+
+// Topology of a triangle surface on flat arrays (tris: 3 ids per triangle, 0-based). Triangles
+// repeating a vertex id are counted and ignored by every other count. Edges are vertex pairs; the
+// link of a vertex (the opposite edges of its triangles) must be one cycle or one path (at a border).
+struct SurfaceTopology {
+  std::size_t num_vertices = 0;          // vertices in the arrays
+  std::size_t num_used_vertices = 0;     // referenced by a valid triangle
+  std::size_t num_triangles = 0;         // valid triangles (three distinct ids)
+  std::size_t num_repeated_id_triangles = 0;  // triangles repeating a vertex id (ignored elsewhere)
+  std::size_t num_edges = 0;
+  std::size_t num_border_edges = 0;      // on one triangle
+  std::size_t num_overshared_edges = 0;  // on more than two triangles
+  std::size_t num_inconsistent_edges = 0;  // on two triangles that traverse it the same way
+  std::size_t num_nonmanifold_vertices = 0;  // link is not a single cycle / single path
+  std::size_t num_components = 0;        // vertex-connected components of the triangles
+  long long euler = 0;                   // V - E + F (used vertices)
+  bool genus_defined = false;            // closed 2-manifold: genus = sum over components (2 - chi_i)/2
+  long long genus = 0;
+  std::size_t num_nonzero_genus_components = 0;
+  // Examples (0xFFFFFFFF when none): the lower endpoint of the first edge (by (lower, higher) id)
+  // not on exactly two triangles, and the lowest non-manifold vertex.
+  std::uint32_t example_nonmanifold_edge_vertex = 0xFFFFFFFFu;
+  std::uint32_t example_nonmanifold_vertex = 0xFFFFFFFFu;
+};
+
+// Throws Error(BadInput) for ids out of range or a size that is not a multiple of 3.
+SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris);
 
 }  // namespace volmap
