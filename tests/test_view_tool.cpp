@@ -107,6 +107,25 @@ TEST_CASE("volmap-view inlines the real viewer bundle (three.js) and loads nothi
   fs::remove_all(dir);
 }
 
+TEST_CASE("an installed volmap-view reads the installed bundle from ../share/volmap/viewer next to its bin/") {
+  // The default GNUInstallDirs layout of `cmake --install`: <prefix>/bin and <prefix>/share.
+  const auto dir = scratch("installed");
+  const auto prefix = dir / "prefix";
+  fs::create_directories(prefix / "bin");
+  fs::create_directories(prefix / "share" / "volmap" / "viewer");
+  fs::copy_file(volmap_test::tool("volmap-view"), prefix / "bin" / "volmap-view");
+  std::ofstream(prefix / "share" / "volmap" / "viewer" / "viewer.js") << "window.__volmap_installed = 'marker-5c1e';\n";
+  volmap::write_medit((dir / "in.mesh").string(), view_test::grid_mesh(2));
+  const std::string cmd = "env -u VOLMAP_VIEWER_BUNDLE " + q(prefix / "bin" / "volmap-view") + " " + q(dir / "in.mesh") +
+                          " -o " + q(dir / "mesh.html") + " --json >" + q(dir / "stdout.txt") + " 2>" + q(dir / "stderr.txt");
+  const int status = std::system(cmd.c_str());
+  REQUIRE_MESSAGE((WIFEXITED(status) && WEXITSTATUS(status) == 0), view_test::read_all((dir / "stderr.txt").string()));
+  const auto j = nlohmann::json::parse(view_test::read_all((dir / "stdout.txt").string()));
+  CHECK(fs::path(j["bundle"].get<std::string>()) == fs::canonical(prefix / "share" / "volmap" / "viewer" / "viewer.js"));
+  CHECK(view_test::read_all((dir / "mesh.html").string()).find("marker-5c1e") != std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("volmap-view boundary-map mode embeds the mapped positions of boundary vertices") {
   const auto dir = scratch("bmap");
   const auto in = view_test::grid_mesh(3);

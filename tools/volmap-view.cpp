@@ -6,8 +6,10 @@
 // Per-tet values (VOLMAP energies and quality from volmap/metrics.hpp, Jacobian singular values and
 // volumes; see view_metrics_adapter.hpp) are computed in C++; inverted/degenerate flags are exact (volmap predicates, batch orient3d_tets). The viewer
 // bundle (viewer/dist/viewer.js: three.js + viewer code, built by `npm ci && npm run build` in
-// viewer/) is read at run time from --bundle, else $VOLMAP_VIEWER_BUNDLE, else the path of this
-// source tree baked in at compile time (<repo>/viewer/dist/viewer.js, from __FILE__).
+// viewer/) is read at run time from --bundle, else $VOLMAP_VIEWER_BUNDLE, else the installed copy
+// next to this executable (<bin>/../share/volmap/viewer/viewer.js, the relative path given by CMake
+// as VOLMAP_VIEW_INSTALLED_BUNDLE) when it exists, else the path of this source tree baked in at
+// compile time (<repo>/viewer/dist/viewer.js, from __FILE__: the build tree).
 // Exit: 0 ok, 2 usage / bad input / bundle missing.
 #include "tool_common.hpp"
 #include "view_metrics_adapter.hpp"
@@ -30,10 +32,29 @@ using namespace volmap;
 
 namespace {
 
-std::string default_bundle_path() {
+#ifndef VOLMAP_VIEW_INSTALLED_BUNDLE
+#define VOLMAP_VIEW_INSTALLED_BUNDLE "../share/volmap/viewer/viewer.js"
+#endif
+
+std::string source_tree_bundle_path() {
   // __FILE__ is the absolute path of this source file under CMake: <repo>/tools/volmap-view.cpp.
   const fs::path source(__FILE__);
   return (source.parent_path().parent_path() / "viewer" / "dist" / "viewer.js").string();
+}
+
+// The installed bundle relative to this executable (/proc/self/exe); empty when it is not there
+// (e.g. in the build tree, where the executable is build/bin/volmap-view).
+std::string installed_bundle_path() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec || exe.empty()) return {};
+  const fs::path bundle = (exe.parent_path() / VOLMAP_VIEW_INSTALLED_BUNDLE).lexically_normal();
+  return fs::is_regular_file(bundle, ec) ? bundle.string() : std::string();
+}
+
+std::string default_bundle_path() {
+  const std::string installed = installed_bundle_path();
+  return installed.empty() ? source_tree_bundle_path() : installed;
 }
 
 std::string read_bundle(const std::string& path) {
