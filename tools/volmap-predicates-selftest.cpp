@@ -141,30 +141,14 @@ void run_all(Runner& r) {
   {
     // Batch path: a 24^3 Kuhn grid (82 944 tets) whose upper half is flattened onto a tilted plane.
     Family& f = r.add("orient3d_tets: Kuhn grid 24^3 x 6, upper half flattened onto a tilted plane");
-    const int n = 24, m = n + 1;
-    const double h = 1.0 / 32;
-    std::vector<double> xyz;
-    for (int k = 0; k < m; ++k)
-      for (int j = 0; j < m; ++j)
-        for (int i = 0; i < m; ++i) {
-          const double x = i * h + 0.1, y = j * h, plane = 0.375 + (x + y) / 3;
-          xyz.insert(xyz.end(), {x, y, std::min(k * h, plane)});
-        }
-    std::vector<std::uint32_t> tets;
-    auto id = [m](int i, int j, int k) { return std::uint32_t((k * m + j) * m + i); };
-    const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int k = 0; k < n; ++k)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-          for (const auto& p : perms) {
-            int c[3] = {i, j, k};
-            std::uint32_t v[4] = {id(i, j, k), 0, 0, 0};
-            for (int q = 0; q < 3; ++q) {
-              c[p[q]] += 1;
-              v[q + 1] = id(c[0], c[1], c[2]);
-            }
-            tets.insert(tets.end(), v, v + 4);
-          }
+    or_::IndexedTets grid = or_::kuhn_grid(24, 1.0 / 32);  // positive tets, before the flattening
+    std::vector<double>& xyz = grid.xyz;
+    const std::vector<std::uint32_t>& tets = grid.tets;
+    for (std::size_t v = 0; v < xyz.size() / 3; ++v) {
+      double* p = &xyz[3 * v];
+      p[0] += 0.1;
+      p[2] = std::min(p[2], 0.375 + (p[0] + p[1]) / 3);
+    }
     const std::size_t nt = tets.size() / 4;
     std::vector<std::int8_t> signs(nt);
     const auto res = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), nt, signs.data());
