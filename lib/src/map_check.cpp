@@ -6,6 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
@@ -22,6 +23,10 @@ namespace volmap {
 namespace {
 
 using Quad = std::array<std::uint32_t, 4>;
+
+// Tets per block of the fused double check: large enough to amortise the TBB task, small enough to
+// balance 2+ workers and keep a block's ids and signs in L2.
+constexpr std::size_t kCheckBlock = 16384;
 
 Quad sorted_quad(const std::uint32_t* tet) {
   Quad q{tet[0], tet[1], tet[2], tet[3]};
@@ -202,6 +207,136 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
   return report;
 }
 
+// Doubles: one fused pass (orient3d_tet_pairs: ids read once, input and output determinants in the
+// same loop, counts only) over blocks of tets, TBB-parallel, with the L0 census of each mesh done once
+// up front. Each block also memcmp's its slice of the two tet arrays, so the common case (the output
+// repeats the input's tet array) needs no separate connectivity pass; only when some slice differs is
+// the order-agnostic pairing (match_connectivity) run. Blocks where some tet is not positive on both
+// sides are evaluated again with per-tet signs (allocation only then). Results merge in block order.
+MapCheckReport check_core_doubles(const TetMeshData& in, const TetMeshData& out, const MapCheckOptions& options) {
+  check_mesh_arrays(in, "input mesh");
+  check_mesh_arrays(out, "output mesh");
+  const std::size_t nt = in.num_tets();
+  const std::size_t nv = in.num_vertices();
+  if (out.num_vertices() != nv || out.num_tets() != nt) match_connectivity(in, out);  // throws the reason
+  const bool parallel = options.parallel && nt >= 2 * kCheckBlock;
+
+  Orient3dBatchFilter filter_in, filter_out;
+  if (parallel) {
+    tbb::parallel_invoke([&] { filter_in = orient3d_batch_filter(in.xyz.data(), nv); },
+                         [&] { filter_out = orient3d_batch_filter(out.xyz.data(), nv); });
+  } else {
+    filter_in = orient3d_batch_filter(in.xyz.data(), nv);
+    filter_out = orient3d_batch_filter(out.xyz.data(), nv);
+  }
+  if (!filter_in.finite) throw_bad_input("", 0, "input mesh: non-finite vertex coordinate");
+  if (!filter_out.finite) throw_bad_input("", 0, "output mesh: non-finite vertex coordinate");
+
+  struct Block {
+    TetPairSignCounts counts;
+    bool identical = true;
+    std::size_t relative_positive = 0, relative_zero = 0, relative_negative = 0, bad = 0;
+    std::vector<std::uint64_t> first_bad;  // allocated only when the block has a bad tet
+  };
+  const std::size_t num_blocks = (nt + kCheckBlock - 1) / kCheckBlock;
+  std::vector<Block> blocks(num_blocks);
+  const std::uint32_t* tets = in.tets.data();
+  auto for_each_block = [&](auto&& body) {
+    if (parallel) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) body(b);
+      });
+    } else {
+      for (std::size_t b = 0; b < num_blocks; ++b) body(b);
+    }
+  };
+  for_each_block([&](std::size_t b) {
+    Block& block = blocks[b];
+    const std::size_t begin = b * kCheckBlock, count = std::min(kCheckBlock, nt - begin);
+    block.identical = std::memcmp(tets + 4 * begin, out.tets.data() + 4 * begin, 4 * count * sizeof(std::uint32_t)) == 0;
+    block.counts = orient3d_tet_pairs(filter_in, in.xyz.data(), filter_out, out.xyz.data(), nv, tets + 4 * begin, count,
+                                      nullptr, nullptr);
+  });
+  bool identical = true, ok = true;
+  for (const Block& block : blocks) {
+    identical &= block.identical;
+    ok &= block.counts.ok;
+  }
+  // Connectivity first (its messages are the precise ones: out-of-range id, missing vertex set).
+  ConnectivityPairing pairing;
+  if (!identical) pairing = match_connectivity(in, out);
+  if (!ok) {
+    if (identical) match_connectivity(in, out);  // throws the exact id when an id is out of range
+    for (const Block& block : blocks) {
+      if (!block.counts.ok) throw_bad_input("", 0, std::string("input or output mesh: ") + block.counts.error);
+    }
+  }
+
+  MapCheckReport report;
+  report.num_tets = nt;
+  report.connectivity = pairing.match;
+  // Absolute mode with another per-tet vertex order: the output in its own order.
+  std::vector<std::int8_t> sign_own;
+  if (options.absolute && pairing.match != ConnectivityMatch::Identical) {
+    sign_own.resize(nt);
+    report.output_own_order = batch_signs(out.xyz.data(), nv, out.tets.data(), nt, sign_own.data(), options.parallel, "output mesh");
+  }
+  const bool own_all_positive = sign_own.empty() || report.output_own_order.positive == nt;
+
+  for_each_block([&](std::size_t b) {
+    Block& block = blocks[b];
+    const std::size_t begin = b * kCheckBlock, count = std::min(kCheckBlock, nt - begin);
+    if (block.counts.both_positive == count && own_all_positive) {
+      block.relative_positive = count;
+      return;
+    }
+    std::vector<std::int8_t> signs(2 * count);
+    std::int8_t* si = signs.data();
+    std::int8_t* so = signs.data() + count;
+    orient3d_tet_pairs(filter_in, in.xyz.data(), filter_out, out.xyz.data(), nv, tets + 4 * begin, count, si, so);
+    for (std::size_t k = 0; k < count; ++k) {
+      const int a = si[k], o = so[k];
+      bool bad = false;
+      if (a == 0 || o == 0) {
+        ++block.relative_zero;
+        bad = true;
+      } else if (a != o) {
+        ++block.relative_negative;
+        bad = true;
+      } else {
+        ++block.relative_positive;
+      }
+      if (options.absolute) {
+        const std::size_t t = begin + k;
+        const int own = sign_own.empty() ? o : sign_own[pairing.output_tet.empty() ? t : pairing.output_tet[t]];
+        if (own <= 0) bad = true;
+      }
+      if (bad) {
+        ++block.bad;
+        if (block.first_bad.size() < options.max_reported_bad) block.first_bad.push_back(begin + k);
+      }
+    }
+  });
+  for (const Block& block : blocks) {
+    const TetPairSignCounts& c = block.counts;
+    report.input.positive += c.first.positive;
+    report.input.zero += c.first.zero;
+    report.input.negative += c.first.negative;
+    report.output.positive += c.second.positive;
+    report.output.zero += c.second.zero;
+    report.output.negative += c.second.negative;
+    report.relative_positive += block.relative_positive;
+    report.relative_zero += block.relative_zero;
+    report.relative_negative += block.relative_negative;
+    report.num_bad += block.bad;
+    for (std::uint64_t t : block.first_bad) {
+      if (report.first_bad.size() < options.max_reported_bad) report.first_bad.push_back(t);
+    }
+  }
+  if (options.absolute && sign_own.empty()) report.output_own_order = report.output;
+  return report;
+}
+
 }  // namespace
 
 ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData& out) {
@@ -280,7 +415,7 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
 
 MapCheckReport check_map(const TetMeshData& in, const TetMeshData& out, const BoundaryMap* boundary,
                          const MapCheckOptions& options) {
-  MapCheckReport report = check_core<double>(in, in.xyz.data(), out, out.xyz.data(), options);
+  MapCheckReport report = check_core_doubles(in, out, options);
   if (boundary) {
     const std::size_t nv = out.num_vertices();
     report.boundary_checked = true;
