@@ -460,84 +460,65 @@ TEST_CASE("rational predicates agree with the double ones and with the mpq oracl
   CHECK(r.positive == tets.size() / 4);
 }
 
-TEST_CASE("fused orient3d_tet_pairs: equals two oracle passes on mixed and out-of-range meshes") {
-  // First array: the Kuhn grid; second: a copy with one half exactly flattened, a tilt (rounded),
-  // some vertices mirrored through x = 0.5 (inverted tets) and, in a second round, the whole second
-  // array scaled by 2^600 (guarded path, no static filter). Every count and sign against the oracle.
-  std::vector<double> a;
+TEST_CASE("orient3d_tets with a reused Orient3dBatchFilter: blocks equal the oracle on mixed and out-of-range meshes") {
+  // The Kuhn grid with one half exactly flattened, a tilt (rounded) and some vertices mirrored through
+  // x = 0.5 (inverted tets); in a second round scaled by 2^600 (guarded path, no static filter). The
+  // filter is computed once and reused by blocks of 700 tets; signs and counts against the oracle.
+  std::vector<double> xyz;
   std::vector<std::uint32_t> tets;
-  kuhn_grid(8, 0.125, 0.0, a, tets);
-  const std::size_t nv = a.size() / 3, nt = tets.size() / 4;
-  std::vector<double> b = a;
+  kuhn_grid(8, 0.125, 0.0, xyz, tets);
+  const std::size_t nv = xyz.size() / 3, nt = tets.size() / 4;
   for (std::size_t v = 0; v < nv; ++v) {
-    double* p = &b[3 * v];
+    double* p = &xyz[3 * v];
     if (p[2] > 0.5) p[2] = 0.5;
     if (p[1] > 0.75) p[0] = 1.0 - p[0];
     p[2] += p[0] / 3;
   }
-  auto oracle_signs = [&](const std::vector<double>& xyz) {
-    std::vector<int> s(nt);
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1)
+      for (double& x : xyz) x = std::ldexp(x, 600);
+    std::vector<int> expected(nt);
+    std::size_t pos = 0, zer = 0;
     for (std::size_t t = 0; t < nt; ++t) {
       const double* p[4];
       for (int i = 0; i < 4; ++i) p[i] = &xyz[3 * tets[4 * t + i]];
-      s[t] = or_::orient3d(p[0], p[1], p[2], p[3]);
+      expected[t] = or_::orient3d(p[0], p[1], p[2], p[3]);
+      pos += expected[t] > 0;
+      zer += expected[t] == 0;
     }
-    return s;
-  };
-  for (int round = 0; round < 2; ++round) {
-    if (round == 1)
-      for (double& x : b) x = std::ldexp(x, 600);
-    const std::vector<int> ea = oracle_signs(a), eb = oracle_signs(b);
-    std::size_t pos_b = 0, zero_b = 0, both = 0;
-    for (std::size_t t = 0; t < nt; ++t) {
-      pos_b += eb[t] > 0;
-      zero_b += eb[t] == 0;
-      both += ea[t] > 0 && eb[t] > 0;
-    }
-    REQUIRE(zero_b > 0);
-    REQUIRE(pos_b + zero_b < nt);  // some inverted tets too
-    const volmap::Orient3dBatchFilter fa = volmap::orient3d_batch_filter(a.data(), nv);
-    const volmap::Orient3dBatchFilter fb = volmap::orient3d_batch_filter(b.data(), nv);
-    CHECK(fa.static_filter);
-    CHECK(fb.static_filter == (round == 0));
-    std::vector<std::int8_t> sa(nt), sb(nt);
-    const auto r = volmap::orient3d_tet_pairs(fa, a.data(), fb, b.data(), nv, tets.data(), nt, sa.data(), sb.data());
-    REQUIRE(r.ok);
-    CHECK(r.first.positive == nt);
-    CHECK(r.second.positive == pos_b);
-    CHECK(r.second.zero == zero_b);
-    CHECK(r.second.negative == nt - pos_b - zero_b);
-    CHECK(r.both_positive == both);
-    int bad = 0;
-    for (std::size_t t = 0; t < nt; ++t) bad += (sa[t] != ea[t]) + (sb[t] != eb[t]);
-    CHECK(bad == 0);
-    // Counts only, and in blocks with the filters reused: the same totals.
-    std::size_t both_blocks = 0, pos_blocks = 0;
+    REQUIRE(zer > 0);
+    REQUIRE(pos + zer < nt);  // some inverted tets too
+    const volmap::Orient3dBatchFilter filter = volmap::orient3d_batch_filter(xyz.data(), nv);
+    CHECK(filter.finite);
+    CHECK(filter.static_filter == (round == 0));
+    std::vector<std::int8_t> signs(nt);
+    std::size_t pos_blocks = 0, zero_blocks = 0;
     for (std::size_t first = 0; first < nt; first += 700) {
       const std::size_t count = std::min<std::size_t>(700, nt - first);
-      const auto part = volmap::orient3d_tet_pairs(fa, a.data(), fb, b.data(), nv, tets.data() + 4 * first, count,
-                                                   nullptr, nullptr);
+      const auto part = volmap::orient3d_tets(filter, xyz.data(), nv, tets.data() + 4 * first, count, signs.data() + first);
       REQUIRE(part.ok);
-      both_blocks += part.both_positive;
-      pos_blocks += part.second.positive;
-      const auto single = volmap::orient3d_tets(fb, b.data(), nv, tets.data() + 4 * first, count, nullptr);
-      CHECK(single.positive == part.second.positive);
+      pos_blocks += part.positive;
+      zero_blocks += part.zero;
+      const auto counts_only = volmap::orient3d_tets(filter, xyz.data(), nv, tets.data() + 4 * first, count, nullptr);
+      CHECK(counts_only.positive == part.positive);
+      CHECK(counts_only.zero == part.zero);
     }
-    CHECK(both_blocks == both);
-    CHECK(pos_blocks == pos_b);
+    CHECK(pos_blocks == pos);
+    CHECK(zero_blocks == zer);
+    int bad = 0;
+    for (std::size_t t = 0; t < nt; ++t) bad += signs[t] != expected[t];
+    CHECK(bad == 0);
   }
-  // Errors: an id out of range, a non-finite coordinate in either array.
-  const volmap::Orient3dBatchFilter fa = volmap::orient3d_batch_filter(a.data(), nv);
+  // Errors: an id out of range; a non-finite coordinate (the filter says so, the batch reports !ok).
+  const volmap::Orient3dBatchFilter filter = volmap::orient3d_batch_filter(xyz.data(), nv);
   std::vector<std::uint32_t> bad_tets(tets.begin(), tets.begin() + 8);
   bad_tets[5] = static_cast<std::uint32_t>(nv);
-  auto r = volmap::orient3d_tet_pairs(fa, a.data(), fa, a.data(), nv, bad_tets.data(), 2, nullptr, nullptr);
+  auto r = volmap::orient3d_tets(filter, xyz.data(), nv, bad_tets.data(), 2, nullptr);
   CHECK(!r.ok);
-  CHECK(r.first.positive == 0);
-  std::vector<double> c = a;
+  CHECK(r.positive == 0);
+  std::vector<double> c = xyz;
   c[7] = std::numeric_limits<double>::quiet_NaN();
-  const volmap::Orient3dBatchFilter fc = volmap::orient3d_batch_filter(c.data(), nv);
-  CHECK(!fc.finite);
-  r = volmap::orient3d_tet_pairs(fa, a.data(), fc, c.data(), nv, tets.data(), nt, nullptr, nullptr);
-  CHECK(!r.ok);
-  CHECK(!volmap::orient3d_tets(fc, c.data(), nv, tets.data(), nt, nullptr).ok);
+  const volmap::Orient3dBatchFilter bad_filter = volmap::orient3d_batch_filter(c.data(), nv);
+  CHECK(!bad_filter.finite);
+  CHECK(!volmap::orient3d_tets(bad_filter, c.data(), nv, tets.data(), nt, nullptr).ok);
 }

@@ -88,21 +88,6 @@ Orient3dBatchFilter orient3d_batch_filter(const double* xyz, std::size_t num_ver
 TetSignCounts orient3d_tets(const Orient3dBatchFilter& filter, const double* xyz, std::size_t num_vertices,
                             const std::uint32_t* tets, std::size_t num_tets, std::int8_t* signs);
 
-// The same tets over two coordinate arrays of num_vertices vertices each (a volume map's input and
-// output, both evaluated in the given per-tet vertex order) in one fused pass: the ids are read
-// once, both determinants share the loop. Counts per array, plus how many tets are positive in both.
-// signs_first / signs_second may be nullptr. Same errors (!ok) as orient3d_tets.
-struct TetPairSignCounts {
-  TetSignCounts first, second;
-  std::size_t both_positive = 0;
-  bool ok = true;
-  const char* error = "";
-};
-TetPairSignCounts orient3d_tet_pairs(const Orient3dBatchFilter& filter_first, const double* xyz_first,
-                                     const Orient3dBatchFilter& filter_second, const double* xyz_second,
-                                     std::size_t num_vertices, const std::uint32_t* tets, std::size_t num_tets,
-                                     std::int8_t* signs_first, std::int8_t* signs_second);
-
 // Same on exact rational coordinates (3*num_vertices Rationals): a double prefilter with the
 // conversion error in its bound decides most tets, the rest use homogeneous integer determinants.
 TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const std::uint32_t* tets,
