@@ -59,11 +59,20 @@ TetSignCounts batch_signs(const Coordinate* xyz, std::size_t num_vertices, const
   std::atomic<std::size_t> positive{0}, zero{0}, negative{0};
   std::atomic<bool> ok{true};
   std::atomic<const char*> error{""};
+  // Doubles: the O(V) census once, not per chunk.
+  Orient3dBatchFilter filter;
+  if constexpr (std::is_same<Coordinate, double>::value) filter = orient3d_batch_filter(xyz, num_vertices);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       const std::size_t begin = c * kChunk;
       const std::size_t count = std::min(kChunk, num_tets - begin);
-      const TetSignCounts part = orient3d_tets(xyz, num_vertices, tets + 4 * begin, count, signs ? signs + begin : nullptr);
+      std::int8_t* part_signs = signs ? signs + begin : nullptr;
+      TetSignCounts part;
+      if constexpr (std::is_same<Coordinate, double>::value) {
+        part = orient3d_tets(filter, xyz, num_vertices, tets + 4 * begin, count, part_signs);
+      } else {
+        part = orient3d_tets(xyz, num_vertices, tets + 4 * begin, count, part_signs);
+      }
       if (!part.ok) {
         ok = false;
         error = part.error;
