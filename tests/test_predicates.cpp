@@ -522,3 +522,55 @@ TEST_CASE("orient3d_tets with a reused Orient3dBatchFilter: blocks equal the ora
   CHECK(!bad_filter.finite);
   CHECK(!volmap::orient3d_tets(bad_filter, c.data(), nv, tets.data(), nt, nullptr).ok);
 }
+
+TEST_CASE("orient3d_batch_filter: census agrees with a plain reference; specials at every position") {
+  // finite / safe / static bound against a direct computation, for odd and even vertex counts, with a
+  // NaN, an inf, an out-of-range tiny or huge magnitude, or a zero axis placed at each position
+  // (first, middle, the odd last vertex).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 5.0);
+  for (const std::size_t nv : {std::size_t(9), std::size_t(10), std::size_t(101)}) {
+    for (int special = 0; special < 6; ++special) {
+      for (const std::size_t pos : {std::size_t(0), nv / 2, nv - 1}) {
+        std::vector<double> xyz(3 * nv);
+        for (double& x : xyz) x = u(rng);
+        const int axis = int(pos % 3);
+        double* slot = &xyz[3 * pos + axis];
+        switch (special) {
+          case 0: break;
+          case 1: *slot = std::numeric_limits<double>::quiet_NaN(); break;
+          case 2: *slot = -std::numeric_limits<double>::infinity(); break;
+          case 3: *slot = std::ldexp(1.0, -200); break;  // nonzero below 2^-142: not safe
+          case 4: *slot = -std::ldexp(1.0, 300); break;  // above 2^201: not safe
+          case 5:
+            for (std::size_t v = 0; v < nv; ++v) xyz[3 * v + axis] = v % 2 ? 0.0 : -0.0;  // zero extent
+            break;
+        }
+        bool finite = true;
+        double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        double max_abs = 0, min_nz = HUGE_VAL;
+        for (std::size_t i = 0; i < xyz.size(); ++i) {
+          const double x = xyz[i];
+          finite &= std::isfinite(x);
+          lo[i % 3] = std::min(lo[i % 3], x);
+          hi[i % 3] = std::max(hi[i % 3], x);
+          max_abs = std::max(max_abs, std::fabs(x));
+          if (x != 0) min_nz = std::min(min_nz, std::fabs(x));
+        }
+        const bool safe = finite && max_abs <= std::ldexp(1.0, 201) && min_nz >= std::ldexp(1.0, -142);
+        const volmap::Orient3dBatchFilter f = volmap::orient3d_batch_filter(xyz.data(), nv);
+        INFO("nv " << nv << " special " << special << " pos " << pos);
+        CHECK(f.finite == finite);
+        CHECK(f.safe == safe);
+        if (!safe) {
+          CHECK(!f.static_filter);
+          continue;
+        }
+        const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
+        const bool use = ex >= 1e-97 && ey >= 1e-97 && ez >= 1e-97;
+        CHECK(f.static_filter == use);
+        if (use) CHECK(f.static_bound == 5.1107127829973299e-15 * ex * ey * ez);
+      }
+    }
+  }
+}

@@ -489,7 +489,7 @@ struct MeshCensus {
   double extent[3] = {0, 0, 0};
 };
 
-MeshCensus census(const double* xyz, std::size_t num_vertices) {
+MeshCensus census_portable(const double* xyz, std::size_t num_vertices) {
   MeshCensus c;
   if (num_vertices == 0) return c;
   // Branch-free reductions over kLanes independent accumulator sets (vertex v goes to lane v mod
@@ -545,6 +545,77 @@ MeshCensus census(const double* xyz, std::size_t num_vertices) {
   for (int k = 0; k < 3; ++k) c.extent[k] = hi[0][k] - lo[0][k];
   return c;
 }
+
+#if defined(__SSE2__)
+// SSE2 census: the coordinates are read as consecutive pairs, so with a stride of 6 doubles (two
+// vertices) the pairs are (x,y), (z,x), (y,z) and three lo/hi accumulator pairs track fixed axes.
+// Finiteness: x − x is NaN exactly for ±inf/NaN (cmpunord mask OR-ed up). With finite input, FP max of
+// |x| and min of the nonzero |x| (zeros replaced by +inf) are exact.
+MeshCensus census(const double* xyz, std::size_t num_vertices) {
+  if (num_vertices < 8) return census_portable(xyz, num_vertices);
+  const std::size_t pairs6 = num_vertices / 2;  // groups of 2 vertices = 6 doubles = 3 pairs
+  const __m128d inf = _mm_set1_pd(HUGE_VAL), abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  const __m128d zero = _mm_setzero_pd();
+  const __m128d minus_inf = _mm_set1_pd(-HUGE_VAL);
+  __m128d lo[3] = {inf, inf, inf}, hi[3] = {minus_inf, minus_inf, minus_inf};
+  __m128d max_abs[3] = {zero, zero, zero}, min_nz[3] = {inf, inf, inf}, bad[3] = {zero, zero, zero};
+  for (std::size_t g = 0; g < pairs6; ++g) {
+    const double* p = xyz + 6 * g;
+    for (int j = 0; j < 3; ++j) {
+      const __m128d x = _mm_loadu_pd(p + 2 * j);
+      lo[j] = _mm_min_pd(x, lo[j]);
+      hi[j] = _mm_max_pd(x, hi[j]);
+      const __m128d ax = _mm_and_pd(x, abs_mask);
+      max_abs[j] = _mm_max_pd(ax, max_abs[j]);
+      const __m128d is_zero = _mm_cmpeq_pd(ax, zero);
+      min_nz[j] = _mm_min_pd(_mm_or_pd(_mm_and_pd(is_zero, inf), _mm_andnot_pd(is_zero, ax)), min_nz[j]);
+      bad[j] = _mm_or_pd(bad[j], _mm_cmpunord_pd(_mm_sub_pd(x, x), zero));
+    }
+  }
+  double l[3][2], h[3][2], ma[3][2], mn[3][2], b[3][2];
+  for (int j = 0; j < 3; ++j) {
+    _mm_storeu_pd(l[j], lo[j]);
+    _mm_storeu_pd(h[j], hi[j]);
+    _mm_storeu_pd(ma[j], max_abs[j]);
+    _mm_storeu_pd(mn[j], min_nz[j]);
+    _mm_storeu_pd(b[j], bad[j]);
+  }
+  // Lanes by axis: pair 0 = (x, y), pair 1 = (z, x), pair 2 = (y, z).
+  static constexpr int kAxis[3][2] = {{0, 1}, {2, 0}, {1, 2}};
+  MeshCensus tail = census_portable(xyz + 6 * pairs6, num_vertices - 2 * pairs6);  // 0 or 1 vertex
+  double lo_axis[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi_axis[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double max_all = 0.0, min_all = HUGE_VAL;
+  bool any_bad = false;
+  for (int j = 0; j < 3; ++j)
+    for (int lane = 0; lane < 2; ++lane) {
+      const int k = kAxis[j][lane];
+      lo_axis[k] = l[j][lane] < lo_axis[k] ? l[j][lane] : lo_axis[k];
+      hi_axis[k] = h[j][lane] > hi_axis[k] ? h[j][lane] : hi_axis[k];
+      max_all = ma[j][lane] > max_all ? ma[j][lane] : max_all;
+      min_all = mn[j][lane] < min_all ? mn[j][lane] : min_all;
+      std::uint64_t bits;
+      std::memcpy(&bits, &b[j][lane], sizeof bits);
+      any_bad |= bits != 0;
+    }
+  MeshCensus c;
+  c.finite = !any_bad && tail.finite;
+  if (num_vertices - 2 * pairs6 == 1) {
+    const double* p = xyz + 6 * pairs6;
+    for (int k = 0; k < 3; ++k) {
+      const double ax = std::fabs(p[k]);
+      lo_axis[k] = p[k] < lo_axis[k] ? p[k] : lo_axis[k];
+      hi_axis[k] = p[k] > hi_axis[k] ? p[k] : hi_axis[k];
+      max_all = ax > max_all ? ax : max_all;
+      if (ax != 0.0) min_all = ax < min_all ? ax : min_all;
+    }
+  }
+  c.safe = c.finite && max_all <= 0x1p201 && min_all >= 0x1p-142;
+  for (int k = 0; k < 3; ++k) c.extent[k] = hi_axis[k] - lo_axis[k];
+  return c;
+}
+#else
+MeshCensus census(const double* xyz, std::size_t num_vertices) { return census_portable(xyz, num_vertices); }
+#endif
 
 // Per-tet work once L1 did not decide, on a mesh known to be safe.
 __attribute__((noinline)) int orient3d_safe_after_static(const double* a, const double* b, const double* c, const double* d) {
