@@ -183,56 +183,52 @@ std::size_t plain_det_positive(const double* xyz, const std::uint32_t* tets, std
   return positive;
 }
 
-void BM_Check_PlainDet(benchmark::State& state, std::string name) {
+// Times `body(case)` per iteration on the named case; reports ns per tet.
+template <class Body>
+void run_check_case(benchmark::State& state, const std::string& name, Body body) {
   const CheckCase* c = check_case(name);
   if (!c) return state.SkipWithError("../shared/data absent");
-  const std::size_t nt = c->in.num_tets();
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(plain_det_positive(c->in.xyz.data(), c->in.tets.data(), nt));
-    benchmark::DoNotOptimize(plain_det_positive(c->out.xyz.data(), c->in.tets.data(), nt));
-  }
-  set_ns_per_tet(state, nt);
+  for (auto _ : state) body(*c);
+  set_ns_per_tet(state, c->in.num_tets());
+}
+
+void BM_Check_PlainDet(benchmark::State& state, std::string name) {
+  run_check_case(state, name, [](const CheckCase& c) {
+    benchmark::DoNotOptimize(plain_det_positive(c.in.xyz.data(), c.in.tets.data(), c.in.num_tets()));
+    benchmark::DoNotOptimize(plain_det_positive(c.out.xyz.data(), c.in.tets.data(), c.in.num_tets()));
+  });
 }
 
 void BM_Check_TwoPasses(benchmark::State& state, std::string name) {
-  const CheckCase* c = check_case(name);
-  if (!c) return state.SkipWithError("../shared/data absent");
-  const std::size_t nt = c->in.num_tets(), nv = c->in.num_vertices();
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(orient3d_tets(c->in.xyz.data(), nv, c->in.tets.data(), nt, nullptr).positive);
-    benchmark::DoNotOptimize(orient3d_tets(c->out.xyz.data(), nv, c->in.tets.data(), nt, nullptr).positive);
-  }
-  set_ns_per_tet(state, nt);
+  run_check_case(state, name, [](const CheckCase& c) {
+    const std::size_t nt = c.in.num_tets(), nv = c.in.num_vertices();
+    benchmark::DoNotOptimize(orient3d_tets(c.in.xyz.data(), nv, c.in.tets.data(), nt, nullptr).positive);
+    benchmark::DoNotOptimize(orient3d_tets(c.out.xyz.data(), nv, c.in.tets.data(), nt, nullptr).positive);
+  });
 }
 
 // Two passes over blocks of 8192 tets with the census hoisted (what check_map does per block).
 void BM_Check_BlockedPasses(benchmark::State& state, std::string name) {
-  const CheckCase* c = check_case(name);
-  if (!c) return state.SkipWithError("../shared/data absent");
-  const std::size_t nt = c->in.num_tets(), nv = c->in.num_vertices();
-  for (auto _ : state) {
-    const Orient3dBatchFilter fi = orient3d_batch_filter(c->in.xyz.data(), nv);
-    const Orient3dBatchFilter fo = orient3d_batch_filter(c->out.xyz.data(), nv);
+  run_check_case(state, name, [](const CheckCase& c) {
+    const std::size_t nt = c.in.num_tets(), nv = c.in.num_vertices();
+    const Orient3dBatchFilter fi = orient3d_batch_filter(c.in.xyz.data(), nv);
+    const Orient3dBatchFilter fo = orient3d_batch_filter(c.out.xyz.data(), nv);
     std::size_t positive = 0;
     for (std::size_t first = 0; first < nt; first += 8192) {
       const std::size_t count = std::min<std::size_t>(8192, nt - first);
-      positive += orient3d_tets(fi, c->in.xyz.data(), nv, c->in.tets.data() + 4 * first, count, nullptr).positive;
-      positive += orient3d_tets(fo, c->out.xyz.data(), nv, c->in.tets.data() + 4 * first, count, nullptr).positive;
+      positive += orient3d_tets(fi, c.in.xyz.data(), nv, c.in.tets.data() + 4 * first, count, nullptr).positive;
+      positive += orient3d_tets(fo, c.out.xyz.data(), nv, c.in.tets.data() + 4 * first, count, nullptr).positive;
     }
     benchmark::DoNotOptimize(positive);
-  }
-  set_ns_per_tet(state, nt);
+  });
 }
 
 void BM_Check_MapCheck(benchmark::State& state, std::string name) {
-  const CheckCase* c = check_case(name);
-  if (!c) return state.SkipWithError("../shared/data absent");
   MapCheckOptions o;
   o.parallel = state.range(0) != 0;
-  std::size_t bad = 1;
-  for (auto _ : state) bad = check_map(c->in, c->out, nullptr, o).num_bad;
+  std::size_t bad = 0;
+  run_check_case(state, name, [&](const CheckCase& c) { bad += check_map(c.in, c.out, nullptr, o).num_bad; });
   if (bad != 0) state.SkipWithError("the map should be valid");
-  set_ns_per_tet(state, c->in.num_tets());
 }
 
 // Every tet exactly degenerate (Kuhn grid flattened onto the plane x = y, so no coordinate is constant):

@@ -169,8 +169,9 @@ TEST_CASE("VOLMAP oracle (§9): bunny and bimba to the printed digits; duck exce
     // whose edge matrix F_in is exactly singular in doubles. There J = F_out·F_in⁻¹ is inf/NaN, and
     // Eigen 3.4's JacobiSVD returns early (InvalidInput) leaving the singular values uninitialised:
     // VOLMAP reads stack garbage for those 4 tets. Its Dirichlet/SymDir/ARAP minima 5.14619 / 8.44081 /
-    // 12.9782 imply Σsᵢ = (5.14619 + 3 − 12.9782)/2 < 0 if they came from one tet — not singular values.
-    // We clamp those tets to `upper` (what the NaN gave with Eigen 3.3): Conformal E 3.12376 and
+    // 12.9782 imply Σsᵢ = (5.14619 + 3 − 12.9782)/2 < 0 if they came from one tet — not singular values
+    // (they are F_out entries of tet 15272, see the emulation below). By default we clamp those tets
+    // to `upper` (what the NaN gave with Eigen 3.3): Conformal E 3.12376 and
     // MIPS3D E 9.54887 against VOLMAP's 3.12373 / 9.54883; giving the 4 tets any energy in
     // [lower, upper] moves E by at most 4·max wᵢ/W·99, which brackets VOLMAP's value (checked below).
     const TetMeshData in = read_medit((dir / "duck_input.mesh").string());
