@@ -293,8 +293,8 @@ TEST_CASE("fused chunked pass: bad tets spread over many chunks give the same re
   }
 }
 
-TEST_CASE("fused blocks: an output differing from the input's tet array in one far block is paired; absolute catches an odd order") {
-  // 82944 tets = 6 blocks of the fused check. Identity map; the output swaps tets 5 and 70000
+TEST_CASE("blocked check: an output differing from the input's tet array in one far block is paired; absolute catches an odd order") {
+  // 82944 tets = 11 blocks of the blocked check. Identity map; the output swaps tets 5 and 70000
   // (Permuted) and lists tet 40000 with v0 and v1 exchanged (odd: negative in its own order).
   const TetMeshData in = vmap_test::kuhn_grid(24);
   TetMeshData out = in;
