@@ -292,3 +292,30 @@ TEST_CASE("fused chunked pass: bad tets spread over many chunks give the same re
     CHECK(!r.certified());
   }
 }
+
+TEST_CASE("blocked check: an output differing from the input's tet array in one far block is paired; absolute catches an odd order") {
+  // 82944 tets = 11 blocks of the blocked check. Identity map; the output swaps tets 5 and 70000
+  // (Permuted) and lists tet 40000 with v0 and v1 exchanged (odd: negative in its own order).
+  const TetMeshData in = vmap_test::kuhn_grid(24);
+  TetMeshData out = in;
+  for (int k = 0; k < 4; ++k) std::swap(out.tets[4 * 5 + k], out.tets[4 * 70000 + k]);
+  std::swap(out.tets[4 * 40000], out.tets[4 * 40000 + 1]);
+  for (const bool parallel : {true, false}) {
+    MapCheckOptions o;
+    o.parallel = parallel;
+    MapCheckReport r = check_map(in, out, nullptr, o);
+    CHECK(r.connectivity == ConnectivityMatch::Permuted);
+    CHECK(r.num_bad == 0);
+    CHECK(r.certified());
+    o.absolute = true;
+    r = check_map(in, out, nullptr, o);
+    CHECK(r.num_bad == 1);
+    CHECK(r.first_bad == std::vector<std::uint64_t>{40000});
+    CHECK(r.output_own_order.negative == 1);
+    // A tet whose vertex set is missing from the output is a mismatch, found although 5 of 6 blocks
+    // are identical.
+    TetMeshData broken = in;
+    broken.tets[4 * 81000] = broken.tets[4 * 81000 + 1];
+    CHECK_THROWS_AS(check_map(in, broken, nullptr, o), Error);
+  }
+}

@@ -427,3 +427,118 @@ TEST_CASE("rational predicates agree with the double ones and with the mpq oracl
   CHECK(r.ok);
   CHECK(r.positive == tets.size() / 4);
 }
+
+TEST_CASE("orient3d_tets with a reused Orient3dBatchFilter: blocks equal the oracle on mixed and out-of-range meshes") {
+  // The Kuhn grid with one half exactly flattened, a tilt (rounded) and some vertices mirrored through
+  // x = 0.5 (inverted tets); in a second round scaled by 2^600 (guarded path, no static filter). The
+  // filter is computed once and reused by blocks of 700 tets; signs and counts against the oracle.
+  std::vector<double> xyz;
+  std::vector<std::uint32_t> tets;
+  kuhn_grid(8, 0.125, 0.0, xyz, tets);
+  const std::size_t nv = xyz.size() / 3, nt = tets.size() / 4;
+  for (std::size_t v = 0; v < nv; ++v) {
+    double* p = &xyz[3 * v];
+    if (p[2] > 0.5) p[2] = 0.5;
+    if (p[1] > 0.75) p[0] = 1.0 - p[0];
+    p[2] += p[0] / 3;
+  }
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1)
+      for (double& x : xyz) x = std::ldexp(x, 600);
+    std::vector<int> expected(nt);
+    std::size_t pos = 0, zer = 0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i) p[i] = &xyz[3 * tets[4 * t + i]];
+      expected[t] = or_::orient3d(p[0], p[1], p[2], p[3]);
+      pos += expected[t] > 0;
+      zer += expected[t] == 0;
+    }
+    REQUIRE(zer > 0);
+    REQUIRE(pos + zer < nt);  // some inverted tets too
+    const volmap::Orient3dBatchFilter filter = volmap::orient3d_batch_filter(xyz.data(), nv);
+    CHECK(filter.finite);
+    CHECK(filter.static_filter == (round == 0));
+    std::vector<std::int8_t> signs(nt);
+    std::size_t pos_blocks = 0, zero_blocks = 0;
+    for (std::size_t first = 0; first < nt; first += 700) {
+      const std::size_t count = std::min<std::size_t>(700, nt - first);
+      const auto part = volmap::orient3d_tets(filter, xyz.data(), nv, tets.data() + 4 * first, count, signs.data() + first);
+      REQUIRE(part.ok);
+      pos_blocks += part.positive;
+      zero_blocks += part.zero;
+      const auto counts_only = volmap::orient3d_tets(filter, xyz.data(), nv, tets.data() + 4 * first, count, nullptr);
+      CHECK(counts_only.positive == part.positive);
+      CHECK(counts_only.zero == part.zero);
+    }
+    CHECK(pos_blocks == pos);
+    CHECK(zero_blocks == zer);
+    int bad = 0;
+    for (std::size_t t = 0; t < nt; ++t) bad += signs[t] != expected[t];
+    CHECK(bad == 0);
+  }
+  // Errors: an id out of range; a non-finite coordinate (the filter says so, the batch reports !ok).
+  const volmap::Orient3dBatchFilter filter = volmap::orient3d_batch_filter(xyz.data(), nv);
+  std::vector<std::uint32_t> bad_tets(tets.begin(), tets.begin() + 8);
+  bad_tets[5] = static_cast<std::uint32_t>(nv);
+  auto r = volmap::orient3d_tets(filter, xyz.data(), nv, bad_tets.data(), 2, nullptr);
+  CHECK(!r.ok);
+  CHECK(r.positive == 0);
+  std::vector<double> c = xyz;
+  c[7] = std::numeric_limits<double>::quiet_NaN();
+  const volmap::Orient3dBatchFilter bad_filter = volmap::orient3d_batch_filter(c.data(), nv);
+  CHECK(!bad_filter.finite);
+  CHECK(!volmap::orient3d_tets(bad_filter, c.data(), nv, tets.data(), nt, nullptr).ok);
+}
+
+TEST_CASE("orient3d_batch_filter: census agrees with a plain reference; specials at every position") {
+  // finite / safe / static bound against a direct computation, for odd and even vertex counts, with a
+  // NaN, an inf, an out-of-range tiny or huge magnitude, or a zero axis placed at each position
+  // (first, middle, the odd last vertex).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 5.0);
+  for (const std::size_t nv : {std::size_t(9), std::size_t(10), std::size_t(101)}) {
+    for (int special = 0; special < 6; ++special) {
+      for (const std::size_t pos : {std::size_t(0), nv / 2, nv - 1}) {
+        std::vector<double> xyz(3 * nv);
+        for (double& x : xyz) x = u(rng);
+        const int axis = int(pos % 3);
+        double* slot = &xyz[3 * pos + axis];
+        switch (special) {
+          case 0: break;
+          case 1: *slot = std::numeric_limits<double>::quiet_NaN(); break;
+          case 2: *slot = -std::numeric_limits<double>::infinity(); break;
+          case 3: *slot = std::ldexp(1.0, -200); break;  // nonzero below 2^-142: not safe
+          case 4: *slot = -std::ldexp(1.0, 300); break;  // above 2^201: not safe
+          case 5:
+            for (std::size_t v = 0; v < nv; ++v) xyz[3 * v + axis] = v % 2 ? 0.0 : -0.0;  // zero extent
+            break;
+        }
+        bool finite = true;
+        double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        double max_abs = 0, min_nz = HUGE_VAL;
+        for (std::size_t i = 0; i < xyz.size(); ++i) {
+          const double x = xyz[i];
+          finite &= std::isfinite(x);
+          lo[i % 3] = std::min(lo[i % 3], x);
+          hi[i % 3] = std::max(hi[i % 3], x);
+          max_abs = std::max(max_abs, std::fabs(x));
+          if (x != 0) min_nz = std::min(min_nz, std::fabs(x));
+        }
+        const bool safe = finite && max_abs <= std::ldexp(1.0, 201) && min_nz >= std::ldexp(1.0, -142);
+        const volmap::Orient3dBatchFilter f = volmap::orient3d_batch_filter(xyz.data(), nv);
+        INFO("nv " << nv << " special " << special << " pos " << pos);
+        CHECK(f.finite == finite);
+        CHECK(f.safe == safe);
+        if (!safe) {
+          CHECK(!f.static_filter);
+          continue;
+        }
+        const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
+        const bool use = ex >= 1e-97 && ey >= 1e-97 && ez >= 1e-97;
+        CHECK(f.static_filter == use);
+        if (use) CHECK(f.static_bound == 5.1107127829973299e-15 * ex * ey * ez);
+      }
+    }
+  }
+}

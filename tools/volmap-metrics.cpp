@@ -1,9 +1,12 @@
 // volmap-metrics — VOLMAP's map metrics (volmap-reference.md §7), same numbers as VOLMAP's `metrics`:
 //   volmap-metrics <in.mesh> <out.mesh> [--upper 100] [--json] [--csv file] [--vtu per_tet.vtu]
-//                  [--original original.mesh]
+//                  [--original original.mesh] [--emulate-volmap-singular-tets]
 // Human output reproduces VOLMAP's text block; --csv appends VOLMAP's CSV line ("; " separated, %f);
 // --json prints everything, including the fixed/extra fields (scale-normalised energies, 3r/R quality
 // of input and output, scaled Jacobian, size ratio against --original, "undefined" instead of NaN).
+// Source tets whose edge matrix is exactly singular in doubles (J not finite; duck star has 4) are
+// where VOLMAP reads uninitialised singular values: by default they get `upper` for every energy;
+// --emulate-volmap-singular-tets reproduces VOLMAP's values (see MetricsOptions in metrics.hpp).
 // Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
 // Exit 0 when computed (also for maps with inverted tets: this tool measures, it does not certify),
 // 2 on bad or mismatched input.
@@ -32,7 +35,7 @@ int main(int argc, char** argv) {
   app.name("volmap-metrics");
   std::string in_path, out_path, csv_path, vtu_path, original_path;
   double upper = 100.0;
-  bool json = false;
+  bool json = false, emulate_singular = false;
   app.add_option("in.mesh", in_path, "source tet mesh (VOLMAP-positive)")->required();
   app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets)")->required();
   app.add_option("--upper", upper, "energy clamp upper bound (default 100)");
@@ -40,6 +43,12 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv_path, "append VOLMAP's CSV line to this file");
   app.add_option("--original", original_path, "unrefined source mesh: report the size ratio against it");
   app.add_option("--vtu", vtu_path, "write the output mesh with per-tet cell data (energies, inverted, quality)");
+  app.add_flag("--emulate-volmap-singular-tets", emulate_singular,
+               "compatibility only: for source tets whose edge matrix is singular in doubles (no finite "
+               "Jacobian), VOLMAP's metrics reads uninitialised singular values (Eigen 3.4 JacobiSVD returns "
+               "early on non-finite input). Default: such tets get the upper bound for every energy. With "
+               "this flag they get (F_out(1,2), F_out(2,0), F_out(2,1)) of the same tet, which reproduces "
+               "VOLMAP's printed duck-star numbers; these values are not a meaningful distortion");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -49,6 +58,7 @@ int main(int argc, char** argv) {
     volmap::MetricsOptions options;
     options.upper = upper;
     options.keep_per_tet = !vtu_path.empty();
+    options.emulate_volmap_singular_tets = emulate_singular;
     const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
                                                               [&] { return volmap::compute_metrics(in, out, options); });
     std::size_t original_tets = 0, original_vertices = 0;
@@ -118,6 +128,12 @@ int main(int argc, char** argv) {
       j["quality_in"] = stats_json(r.quality_in);
       j["quality_out"] = stats_json(r.quality_out);
       j["scaled_jacobian_out"] = stats_json(r.scaled_jacobian_out);
+      j["singular_source_tets"] = {
+          {"count", r.num_singular_source},
+          {"first", r.first_singular_source},
+          {"treatment", r.singular_source_emulated ? "emulated VOLMAP uninitialised singular values "
+                                                     "(F_out(1,2), F_out(2,0), F_out(2,1))"
+                                                   : "energies set to upper (VOLMAP reads uninitialised memory here)"}};
       if (original_tets) {
         j["size_ratio_tets"] = double(r.num_tets) / double(original_tets);
         j["size_ratio_vertices"] = double(in.num_vertices()) / double(original_vertices);
@@ -134,6 +150,13 @@ int main(int argc, char** argv) {
       for (int e : {1, 2, 3}) {
         if (r.energy_scaled[e].defined) std::cout << r.energy_scaled[e].mean; else std::cout << "undefined";
         std::cout << (e < 3 ? " / " : "\n");
+      }
+      if (r.num_singular_source) {
+        std::cout << "Note: " << r.num_singular_source
+                  << " source tets have an edge matrix singular in doubles (no finite Jacobian; VOLMAP reads "
+                     "uninitialised singular values there): "
+                  << (r.singular_source_emulated ? "VOLMAP's values emulated" : "energies set to the upper bound")
+                  << "\n";
       }
       if (original_tets) {
         std::cout << "Size ratio (tets): " << double(r.num_tets) / double(original_tets) << "\n";

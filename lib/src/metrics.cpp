@@ -127,12 +127,27 @@ void compat_singular_values(const double* const in[4], const double* const out[4
     // F_in exactly singular in doubles (4 duck source tets). Eigen 3.4's JacobiSVD returns early on a
     // non-finite matrix (info() == InvalidInput) and leaves the singular values UNSET: VOLMAP reads
     // uninitialised memory there (its duck Dirichlet/SymDir/ARAP minima). We report NaN, which the
-    // clamp turns into `upper` (what Eigen 3.3 did: the NaN propagated).
+    // clamp turns into `upper` (what Eigen 3.3 did: the NaN propagated); see
+    // volmap_singular_tet_values for the opt-in emulation.
     sigma[0] = sigma[1] = sigma[2] = std::numeric_limits<double>::quiet_NaN();
     return;
   }
   const Eigen::JacobiSVD<RowMat3> svd(j, Eigen::ComputeFullU | Eigen::ComputeFullV);
   for (int k = 0; k < 3; ++k) sigma[k] = svd.singularValues()[k];
+}
+
+// The "singular values" VOLMAP's metrics binary read for a tet without finite J (see
+// MetricsOptions::emulate_volmap_singular_tets): doubles 5, 6, 7 of the row-major output edge matrix
+// F_out = [b1−b0 | b2−b0 | b3−b0], i.e. (b3−b0).y, (b1−b0).z, (b2−b0).z. Hypotheses tested against
+// the duck-star oracle row (the only pair with such tets): previous/next/last tet's singular values,
+// zeros, rows/columns of F_in, F_in⁻¹, J of this and neighbouring tets, and every 3 consecutive
+// doubles of F_in, F_out, F_in⁻¹, J (row- and column-major) of tets t−2..t+2; only this one gives all
+// 15 printed numbers of the row (in particular Dirichlet/SymDir/ARAP minima 5.14619 / 8.44081 /
+// 12.9782, all three from tet 15272, and Conformal / MIPS3D E 3.12373 / 9.54883).
+void volmap_singular_tet_values(const double* const out[4], double sigma[3]) {
+  sigma[0] = out[3][1] - out[0][1];
+  sigma[1] = out[1][2] - out[0][2];
+  sigma[2] = out[2][2] - out[0][2];
 }
 
 // cinolib's five 3D energies of (s_max, s_mid, s_min), clamped as VOLMAP does.
@@ -337,7 +352,13 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
       double* sigma = f + 2 * kNumEnergies + 3;
       compat_singular_values(pin, pout, sigma);
       if (sign_out[t] > 0) {
-        compat_energies(sigma, upper, f);
+        if (options.emulate_volmap_singular_tets && std::isnan(sigma[0])) {
+          double emulated[3];
+          volmap_singular_tet_values(pout, emulated);
+          compat_energies(emulated, upper, f);
+        } else {
+          compat_energies(sigma, upper, f);
+        }
         weight_compat[t] = compat_unsigned_volume(pout[0], pout[1], pout[2], pout[3]);
         Mat3 j;
         double det = 0;
@@ -354,6 +375,13 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
       f[2 * kNumEnergies + 2] = tet_scaled_jacobian_volmap(pout[0], pout[1], pout[2], pout[3]);
     }
   });
+
+  report.singular_source_emulated = options.emulate_volmap_singular_tets;
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (!std::isnan(field[static_cast<std::size_t>(kFields) * t + 2 * kNumEnergies + 3])) continue;
+    ++report.num_singular_source;
+    if (report.first_singular_source.size() < 20) report.first_singular_source.push_back(t);
+  }
 
   // Serial reduction in tet order (VOLMAP's summation order), all energies in one pass.
   {

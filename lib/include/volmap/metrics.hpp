@@ -37,6 +37,16 @@ struct MetricsOptions {
   double upper = 100.0;        // VOLMAP's clamp (its 3rd argument)
   bool keep_per_tet = false;   // fill MetricsReport::per_tet (for --vtu)
   bool parallel = true;
+  // Opt-in compatibility switch, never the default. A source tet whose edge matrix F_in is exactly
+  // singular in doubles has no finite J; VOLMAP's `metrics` (cinolib + Eigen 3.4 JacobiSVD, which
+  // returns early on non-finite input) then reads UNINITIALISED singular values. By default such tets
+  // get `upper` for every energy (the value the NaN gave with Eigen 3.3). With this switch they get
+  // the values that reproduce VOLMAP's printed duck-star row to every digit:
+  //   (s1, s2, s3) := (F_out(1,2), F_out(2,0), F_out(2,1)) = ((b3−b0).y, (b1−b0).z, (b2−b0).z),
+  // i.e. doubles 5..7 of the row-major output edge matrix of the same tet (a fingerprint of the
+  // reference binary's stack layout, found by testing hypotheses against the oracle; not a
+  // meaningful energy). Only the five compatible energies change; per-tet singular values stay NaN.
+  bool emulate_volmap_singular_tets = false;
 };
 
 // min / max / weighted mean over a set of tets; `defined` is false when the set is empty.
@@ -64,6 +74,12 @@ struct MetricsReport {
   std::array<RangeStats, kNumEnergies> energy;
   // Same, with the output scaled by k = (V_in/V_out)^(1/3) about the origin (scale-free distortion).
   std::array<RangeStats, kNumEnergies> energy_scaled;
+  // Source tets whose F_in is exactly singular in doubles (J not finite): how many, the first ids, and
+  // whether their energies were emulated (MetricsOptions::emulate_volmap_singular_tets) or clamped
+  // to `upper` (default).
+  std::size_t num_singular_source = 0;
+  std::vector<std::uint64_t> first_singular_source;  // up to 20 ids, increasing
+  bool singular_source_emulated = false;
   double volume_in = 0, volume_out = 0;  // total |volume| (output: all tets)
   double scale_factor = 1;               // k
   // Compat "Tet Radius Ratio" −R/(3r) over all output tets (min = worst, avg unweighted).

@@ -73,6 +73,21 @@ struct TetSignCounts {
 TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
                             std::size_t num_tets, std::int8_t* signs);
 
+// L0 of the batch path (finiteness, per-axis extents, exponent census) for one coordinate array,
+// computed once in O(num_vertices) and reused by any number of batch calls over that array (e.g.
+// parallel blocks of one mesh), which then do no per-vertex work.
+struct Orient3dBatchFilter {
+  bool finite = true;              // every coordinate finite (batch calls report !ok otherwise)
+  bool safe = true;                // every nonzero |coordinate| in [2^-142, 2^201] (L1–L3 unguarded)
+  double static_bound = 0.0;       // L1 threshold 5.11e-15·Δx·Δy·Δz; 0 when L1 does not apply
+  bool static_filter = false;      // whether static_bound is valid
+};
+Orient3dBatchFilter orient3d_batch_filter(const double* xyz, std::size_t num_vertices);
+
+// orient3d_tets with a precomputed filter of the same xyz (no O(num_vertices) census per call).
+TetSignCounts orient3d_tets(const Orient3dBatchFilter& filter, const double* xyz, std::size_t num_vertices,
+                            const std::uint32_t* tets, std::size_t num_tets, std::int8_t* signs);
+
 // Same on exact rational coordinates (3*num_vertices Rationals): a double prefilter with the
 // conversion error in its bound decides most tets, the rest use homogeneous integer determinants.
 TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const std::uint32_t* tets,
