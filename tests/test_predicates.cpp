@@ -432,9 +432,9 @@ TEST_CASE("orient3d_tets with a reused Orient3dBatchFilter: blocks equal the ora
   // The Kuhn grid with one half exactly flattened, a tilt (rounded) and some vertices mirrored through
   // x = 0.5 (inverted tets); in a second round scaled by 2^600 (guarded path, no static filter). The
   // filter is computed once and reused by blocks of 700 tets; signs and counts against the oracle.
-  std::vector<double> xyz;
-  std::vector<std::uint32_t> tets;
-  kuhn_grid(8, 0.125, 0.0, xyz, tets);
+  or_::IndexedTets grid = or_::kuhn_grid(8, 0.125);
+  std::vector<double>& xyz = grid.xyz;
+  const std::vector<std::uint32_t>& tets = grid.tets;
   const std::size_t nv = xyz.size() / 3, nt = tets.size() / 4;
   for (std::size_t v = 0; v < nv; ++v) {
     double* p = &xyz[3 * v];
