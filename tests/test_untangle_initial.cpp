@@ -19,28 +19,10 @@
 #include <random>
 #include <sys/wait.h>
 
+using map_test::exact_bad;
+using map_test::scrambled_target;
+
 namespace {
-
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-
-// Boundary mapped by an orientation-preserving affine map; interior moved randomly by ±amount.
-std::vector<double> scrambled(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& bnd, unsigned seed, double amount) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amount, amount);
-  std::vector<double> t(m.xyz.size());
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    const double x = m.xyz[3 * v], y = m.xyz[3 * v + 1], z = m.xyz[3 * v + 2];
-    t[3 * v] = 2 * x + 0.3 * y;
-    t[3 * v + 1] = y + 0.2 * z;
-    t[3 * v + 2] = 0.5 * z + 0.1 * x;
-    if (!bnd[v])
-      for (int i = 0; i < 3; ++i) t[3 * v + i] += u(rng);
-  }
-  return t;
-}
 
 int run(const std::string& cmd) {
   const int rc = std::system((cmd + " > /dev/null 2>&1").c_str());
@@ -53,7 +35,7 @@ TEST_CASE("FFM Hessian matches finite differences of the gradient and its projec
   const int n = 3;
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
-  auto target = scrambled(m, bnd, 11, 0.3);
+  auto target = scrambled_target(m, bnd, 11, 0.3);
   REQUIRE(exact_bad(target, m.tets) > 0);  // tangled: the D < 0 branch of χ and its derivatives
   for (auto ref : {volmap::ReferenceShape::RegularTet, volmap::ReferenceShape::RestShape}) {
     volmap::FfmEnergy E(m.xyz, m.tets, bnd, target, ref, 0.5);
@@ -96,7 +78,7 @@ TEST_CASE("FFM Newton untangles scrambled interior vertices and the exact check 
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
   for (unsigned seed : {1u, 2u, 3u}) {
-    auto target = scrambled(m, bnd, seed, 0.8);
+    auto target = scrambled_target(m, bnd, seed, 0.8);
     const auto before = target;
     REQUIRE(exact_bad(target, m.tets) > 0);
     volmap::FfmOptions o;
@@ -146,7 +128,7 @@ TEST_CASE("FFM warm-start epsilon certifies a nearly valid map") {
   const int n = 5;
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
-  auto target = scrambled(m, bnd, 5, 0.0);
+  auto target = scrambled_target(m, bnd, 5, 0.0);
   const std::uint32_t v = std::uint32_t((2 * (n + 1) + 2) * (n + 1) + 2);
   target[3 * v] += 0.25;
   target[3 * v + 2] += 0.12;

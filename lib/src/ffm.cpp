@@ -101,6 +101,21 @@ struct FfmEnergy::Impl {
   // Energy of tet t at the loaded positions x; D into tet_det[t]. Writes the 12 vertex gradients into
   // g12 and the 12×12 Hessian (row-major, vertex-major xyz) into h144 when non-null.
   double tet_terms(std::size_t t, double eps, double* g12, double* h144, bool project) const;
+  // fn(local, row, col) for every entry of tet t's 12×12 Hessian (local = index in h144) between free
+  // vertices, with its row and column among the variables.
+  template <class Fn>
+  void for_each_hessian_entry(std::size_t t, Fn&& fn) const {
+    for (int v = 0; v < 4; ++v) {
+      const std::int64_t bv = layout.free_index[tets[4 * t + v]];
+      if (bv < 0) continue;
+      for (int u = 0; u < 4; ++u) {
+        const std::int64_t bu = layout.free_index[tets[4 * t + u]];
+        if (bu < 0) continue;
+        for (int c = 0; c < 3; ++c)
+          for (int c2 = 0; c2 < 3; ++c2) fn((3 * v + c) * 12 + 3 * u + c2, 3 * std::size_t(bv) + c, 3 * std::size_t(bu) + c2);
+      }
+    }
+  }
   double min_tet_det() const {
     double d = std::numeric_limits<double>::infinity();
     for (double v : tet_det) d = std::min(d, v);
@@ -308,17 +323,7 @@ double FfmEnergy::evaluate_dense_hessian(const double* vars, double eps, bool sp
   double energy = 0, g12[12], h144[144];
   for (std::size_t t = 0; t < m.nt; ++t) {
     energy += m.tet_terms(t, eps, g12, h144, spd_projection);
-    for (int v = 0; v < 4; ++v) {
-      const std::int64_t bv = m.layout.free_index[m.tets[4 * t + v]];
-      if (bv < 0) continue;
-      for (int u = 0; u < 4; ++u) {
-        const std::int64_t bu = m.layout.free_index[m.tets[4 * t + u]];
-        if (bu < 0) continue;
-        for (int c = 0; c < 3; ++c)
-          for (int c2 = 0; c2 < 3; ++c2)
-            hessian[(3 * std::size_t(bv) + c) * n + 3 * std::size_t(bu) + c2] += h144[(3 * v + c) * 12 + 3 * u + c2];
-      }
-    }
+    m.for_each_hessian_entry(t, [&](int local, std::size_t row, std::size_t col) { hessian[row * n + col] += h144[local]; });
   }
   return energy;
 }
@@ -331,20 +336,11 @@ class FfmNewton {
     const std::size_t n = e_.num_variables();
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(m_.nt * 78);
+    // Lower triangle only.
     auto for_each_entry = [&](std::size_t t, auto&& fn) {
-      for (int v = 0; v < 4; ++v) {
-        const std::int64_t bv = m_.layout.free_index[m_.tets[4 * t + v]];
-        if (bv < 0) continue;
-        for (int u = 0; u < 4; ++u) {
-          const std::int64_t bu = m_.layout.free_index[m_.tets[4 * t + u]];
-          if (bu < 0) continue;
-          for (int c = 0; c < 3; ++c)
-            for (int c2 = 0; c2 < 3; ++c2) {
-              const std::size_t row = 3 * std::size_t(bv) + c, col = 3 * std::size_t(bu) + c2;
-              if (row >= col) fn((3 * v + c) * 12 + 3 * u + c2, row, col);
-            }
-        }
-      }
+      m_.for_each_hessian_entry(t, [&](int local, std::size_t row, std::size_t col) {
+        if (row >= col) fn(local, row, col);
+      });
     };
     for (std::size_t t = 0; t < m_.nt; ++t)
       for_each_entry(t, [&](int, std::size_t row, std::size_t col) { trip.emplace_back(int(row), int(col), 0.0); });
