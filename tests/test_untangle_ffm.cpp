@@ -75,12 +75,15 @@ TEST_CASE("FFM untangles scrambled interior vertices and the exact check certifi
   const int n = 4;
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
+  for (auto solver : {volmap::FfmSolver::Lbfgs, volmap::FfmSolver::Newton})
   for (unsigned seed : {1u, 2u, 3u}) {
     auto target = scrambled_target(m, bnd, seed, 0.8);
     const auto before = target;
     REQUIRE(exact_bad(target, m.tets) > 0);
-    auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target);
-    MESSAGE("outer " << r.outer_iterations << " lbfgs " << r.lbfgs_iterations << " evals " << r.evaluations << " eps " << r.final_epsilon << " dmin " << r.min_det);
+    volmap::FfmOptions options;
+    options.solver = solver;  // L-BFGS and Newton (SPD-projected Hessians) inner solvers
+    auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target, options);
+    MESSAGE("solver " << int(solver) << " outer " << r.outer_iterations << " lbfgs " << r.lbfgs_iterations << " evals " << r.evaluations << " eps " << r.final_epsilon << " dmin " << r.min_det);
     CHECK(r.certified);
     CHECK(r.nonpositive == 0);
     CHECK(exact_bad(target, m.tets) == 0);

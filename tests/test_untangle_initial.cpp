@@ -73,26 +73,6 @@ TEST_CASE("FFM Hessian matches finite differences of the gradient and its projec
   }
 }
 
-TEST_CASE("FFM Newton untangles scrambled interior vertices and the exact check certifies it") {
-  const int n = 4;
-  auto m = map_test::kuhn_grid(n);
-  auto bnd = map_test::grid_boundary_flags(n);
-  for (unsigned seed : {1u, 2u, 3u}) {
-    auto target = scrambled_target(m, bnd, seed, 0.8);
-    const auto before = target;
-    REQUIRE(exact_bad(target, m.tets) > 0);
-    volmap::FfmOptions o;
-    o.solver = volmap::FfmSolver::Newton;
-    auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target, o);
-    MESSAGE("newton: outer " << r.outer_iterations << " steps " << r.lbfgs_iterations << " evals " << r.evaluations);
-    CHECK(r.certified);
-    CHECK(exact_bad(target, m.tets) == 0);
-    for (std::size_t v = 0; v < m.num_vertices(); ++v)
-      if (bnd[v])
-        for (int i = 0; i < 3; ++i) CHECK(target[3 * v + i] == before[3 * v + i]);
-  }
-}
-
 TEST_CASE("local FFM fixes one displaced vertex and moves nothing outside its region") {
   const int n = 6;
   auto m = map_test::kuhn_grid(n);
