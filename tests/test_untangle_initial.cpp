@@ -1,5 +1,5 @@
 // Untangling from given initial maps and the FFM Newton machinery: the exact per-tet Hessian against
-// finite differences of the analytic gradient, its SPD projection, the Newton solver and the local
+// finite differences of the analytic gradient, its SPD projection, the local
 // (frozen-rest) untangler certified by the exact check, the warm-start ε, and `volmap-map --initial`
 // (the 7-vertex Floater–Pham-Trong example of GalaxyMaps, a wrong boundary → exit 2, map `-`).
 #include <doctest/doctest.h>
