@@ -11,7 +11,8 @@
 // at the map's doubles, every other coordinate printed with %.17g. Refinement (chord splits, cone
 // repair) happens only when --refined-input is given (the refined source is written there; the pair
 // has identical connectivity); without it the connectivity is fixed (as with --no-refine).
-// --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte → TLC → link-kernel → FFM);
+// --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte or --initial → TLC → link-kernel →
+// local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
 // Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
 // Certification re-reads the written files and runs the exact check on exactly those numbers.
