@@ -1,11 +1,13 @@
 // Untangling from given initial maps and the FFM Newton machinery: the exact per-tet Hessian against
 // finite differences of the analytic gradient, its SPD projection, the local
 // (frozen-rest) untangler certified by the exact check, the warm-start ε, and `volmap-map --initial`
-// (the 7-vertex Floater–Pham-Trong example of GalaxyMaps, a wrong boundary → exit 2, map `-`).
+// (the 7-vertex Floater–Pham-Trong example of GalaxyMaps, a wrong boundary → exit 2, map `-`; the TLC cube).
 #include <doctest/doctest.h>
 
 #include <volmap/boundary_faces.hpp>
 #include <volmap/ffm.hpp>
+#include <volmap/error.hpp>
+#include <volmap/volume_map.hpp>
 #include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 
@@ -16,6 +18,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <random>
 #include <sys/wait.h>
 
@@ -179,4 +182,79 @@ TEST_CASE("volmap-map --initial: GalaxyMaps 7-vertex example certifies and a wro
   // Without --initial (Tutte start) the example also certifies: the cascade untangles Tutte's 2 flips.
   CHECK(run(base + map_path + " " + out) == 0);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compute_volume_map starts from the given initial map and checks its boundary") {
+  const int n = 3;
+  auto m = map_test::kuhn_grid(n);
+  auto bnd = map_test::grid_boundary_flags(n);
+  volmap::BoundaryMap map;
+  for (std::uint32_t v = 0; v < m.num_vertices(); ++v)
+    if (bnd[v]) {
+      map.vids.push_back(v);
+      for (int c = 0; c < 3; ++c) map.xyz.push_back(m.xyz[3 * v + c]);
+    }
+  // A valid initial map (the identity) is returned untouched: Tutte 3D would move the interior.
+  volmap::VolumeMapOptions o;
+  o.quality_pass = false;
+  o.initial_xyz = m.xyz;
+  auto r = volmap::compute_volume_map(m, map, o);
+  CHECK(r.certified);
+  CHECK(r.certified_by == "initial");
+  CHECK(r.target_xyz == m.xyz);
+  volmap::VolumeMapOptions tutte;
+  tutte.quality_pass = false;
+  CHECK(volmap::compute_volume_map(m, map, tutte).target_xyz != m.xyz);
+  // A tangled initial map is untangled; its boundary must match the map bit for bit.
+  o.initial_xyz = scrambled_target(m, bnd, 3, 0.0);
+  for (std::size_t k = 0; k < map.size(); ++k)
+    for (int c = 0; c < 3; ++c) map.xyz[3 * k + c] = o.initial_xyz[3 * std::size_t(map.vids[k]) + c];
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    if (!bnd[v]) o.initial_xyz[3 * v] += 0.9;  // push every interior vertex across its neighbours
+  REQUIRE(exact_bad(o.initial_xyz, m.tets) > 0);
+  r = volmap::compute_volume_map(m, map, o);
+  CHECK(r.certified);
+  CHECK(r.stages.at(1).name == "initial");
+  auto wrong = o;
+  wrong.initial_xyz[3 * std::size_t(map.vids[0]) + 1] = std::nextafter(wrong.initial_xyz[3 * std::size_t(map.vids[0]) + 1], 1e9);
+  CHECK_THROWS_AS(volmap::compute_volume_map(m, map, wrong), volmap::Error);
+  wrong.initial_xyz.pop_back();
+  CHECK_THROWS_AS(volmap::compute_volume_map(m, map, wrong), volmap::Error);
+}
+
+TEST_CASE("TLC example cube from its tangled initial map certifies with a bit-exact boundary") {
+  VOLMAP_REQUIRE_DATA(p, "maps/tlc/input");
+  // Blocks: nV 3 + rest positions, nV 3 + initial positions, nT 4 + tets, nH + handle (boundary) ids.
+  std::ifstream in(p);
+  std::size_t count = 0, width = 0;
+  volmap::TetMeshData rest;
+  in >> count >> width;
+  rest.xyz.resize(3 * count);
+  for (auto& x : rest.xyz) in >> x;
+  std::vector<double> init(3 * count);
+  in >> count >> width;
+  for (auto& x : init) in >> x;
+  in >> count >> width;
+  rest.tets.resize(4 * count);
+  for (auto& t : rest.tets) in >> t;
+  in >> count;
+  volmap::BoundaryMap map;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t h = 0;
+    in >> h;
+    map.vids.push_back(h);
+    for (int c = 0; c < 3; ++c) map.xyz.push_back(init[3 * std::size_t(h) + c]);
+  }
+  REQUIRE(rest.num_tets() == 162);
+  REQUIRE(exact_bad(init, rest.tets) == 36);
+  volmap::VolumeMapOptions o;
+  o.initial_xyz = init;
+  o.quality_pass = false;
+  const auto r = volmap::compute_volume_map(rest, map, o);
+  MESSAGE("refined " << r.refined << " tets " << r.source.num_tets() << " certified " << r.certified << " by " << r.certified_by);
+  CHECK(exact_bad(r.source.xyz, r.source.tets) == 0);  // the refined source stays valid
+  CHECK(r.certified == (exact_bad(r.target_xyz, r.source.tets) == 0));
+  CHECK(r.stages.at(r.refined ? 2 : 1).name == "initial");
+  for (std::size_t k = 0; k < map.size(); ++k)
+    for (int c = 0; c < 3; ++c) CHECK(r.target_xyz[3 * std::size_t(map.vids[k]) + c] == map.xyz[3 * k + c]);
 }
