@@ -17,6 +17,15 @@
 # Re-running the 22 failures with <= 13 bad tets at --time-limit 60 certified 9 more (65/100).
 # Cascade TLC share (volmap-map --tlc-share), MESHES="bone duck" subset, same flags, --time-limit 20:
 #   --tlc-share 0.5 (default): 8/10 certified; --tlc-share 0.8: 8/10 (same two failures, same counts).
+# s2-untangle cascade (local FFM with Newton on the bad region, global FFM with stall hand-over),
+# measured 2026-11-23 13:33-13:48 UTC, load ~2, same flags (--threads 1 --time-limit 20 --no-refine
+# --no-quality), before = main 23242ab, after = s2-untangle, run back to back:
+#   MESHES="bone duck bird" (15 pairs): before 8/15, median 18.12 s; after 8/15, median 1.17 s
+#     (bone octa 18.1 s by ffm-regular -> 1.2 s by ffm-local; bird still 15-61 bad in both).
+#   17 pairs that failed in the table above (homer cube, moai/sphinx/buste/bimba/bunny star, ramses x4,
+#   bunny octa, blade cube/tet, hand cube, camile_hand cube/octa, mouse cube): before 7/17, after 7/17
+#     (after gains sphinx star, 10.5 s by ffm-local; hand cube certified by the before binary once at
+#     10.7 s and failed on its re-run: TLC stopped at its time share is not reproducible under load).
 set -u
 bin=$1; data=$2; out=$3; shift 3
 tmp=$(mktemp -d)

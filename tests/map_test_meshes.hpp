@@ -5,8 +5,11 @@
 
 #include <volmap/generate.hpp>
 #include <volmap/mesh_data.hpp>
+#include <volmap/predicates.hpp>
 
 #include <cstdint>
+#include <random>
+#include <utility>
 #include <vector>
 
 namespace map_test {
@@ -23,6 +26,28 @@ inline std::vector<std::uint8_t> grid_boundary_flags(int n) {
       for (int i = 0; i <= n; ++i)
         b.push_back(i == 0 || j == 0 || k == 0 || i == n || j == n || k == n);
   return b;
+}
+
+// Exact number of tets with orient3d <= 0.
+inline std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
+  return c.zero + c.negative;
+}
+
+// Boundary mapped by an orientation-preserving affine map; interior moved randomly by ±amount.
+inline std::vector<double> scrambled_target(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& bnd, unsigned seed, double amount) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  std::vector<double> t(m.xyz.size());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.xyz[3 * v], y = m.xyz[3 * v + 1], z = m.xyz[3 * v + 2];
+    t[3 * v] = 2 * x + 0.3 * y;
+    t[3 * v + 1] = y + 0.2 * z;
+    t[3 * v + 2] = 0.5 * z + 0.1 * x;
+    if (!bnd[v])
+      for (int i = 0; i < 3; ++i) t[3 * v + i] += u(rng);
+  }
+  return t;
 }
 
 }  // namespace map_test

@@ -10,30 +10,8 @@
 #include <cmath>
 #include <random>
 
-namespace {
-
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-
-// Boundary mapped by an orientation-preserving affine map; interior scrambled.
-std::vector<double> scrambled_target(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& bnd, unsigned seed, double amount) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amount, amount);
-  std::vector<double> t(m.xyz.size());
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    const double x = m.xyz[3 * v], y = m.xyz[3 * v + 1], z = m.xyz[3 * v + 2];
-    t[3 * v] = 2 * x + 0.3 * y;
-    t[3 * v + 1] = y + 0.2 * z;
-    t[3 * v + 2] = 0.5 * z + 0.1 * x;
-    if (!bnd[v])
-      for (int i = 0; i < 3; ++i) t[3 * v + i] += u(rng);
-  }
-  return t;
-}
-
-}  // namespace
+using map_test::exact_bad;
+using map_test::scrambled_target;
 
 TEST_CASE("chi is the smooth positive part, cancellation-free for very negative D") {
   CHECK(volmap::ffm_chi(0, 2) == doctest::Approx(1));
@@ -97,12 +75,15 @@ TEST_CASE("FFM untangles scrambled interior vertices and the exact check certifi
   const int n = 4;
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
+  for (auto solver : {volmap::FfmSolver::Lbfgs, volmap::FfmSolver::Newton})
   for (unsigned seed : {1u, 2u, 3u}) {
     auto target = scrambled_target(m, bnd, seed, 0.8);
     const auto before = target;
     REQUIRE(exact_bad(target, m.tets) > 0);
-    auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target);
-    MESSAGE("outer " << r.outer_iterations << " lbfgs " << r.lbfgs_iterations << " evals " << r.evaluations << " eps " << r.final_epsilon << " dmin " << r.min_det);
+    volmap::FfmOptions options;
+    options.solver = solver;  // L-BFGS and Newton (SPD-projected Hessians) inner solvers
+    auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target, options);
+    MESSAGE("solver " << int(solver) << " outer " << r.outer_iterations << " lbfgs " << r.lbfgs_iterations << " evals " << r.evaluations << " eps " << r.final_epsilon << " dmin " << r.min_det);
     CHECK(r.certified);
     CHECK(r.nonpositive == 0);
     CHECK(exact_bad(target, m.tets) == 0);

@@ -1,12 +1,18 @@
 // volmap-map — certified robust volume mapper (docs/mapping.md; issue 6), candidate-method contract:
 //   volmap-map <in.mesh> <map.txt> <out.mesh> [--method ffm|tlc] [--refined-input path]
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
-//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first]   (cascade tuning, see volume_map.hpp)
+//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local]   (cascade tuning, see volume_map.hpp)
+//              [--initial init.(mesh|vtk|vtu)]
+// in.mesh may also be .vtk/.vtu (VOLMAP-positive tets). --initial starts from a given (possibly tangled)
+// map instead of Tutte 3D: same vertex count and the same tets in the same order as the input, boundary
+// vertices bit-identical to the prescribed map (else exit 2). A map positional of `-` takes the boundary
+// map from the initial file's boundary vertices (requires --initial).
 // out.mesh has the (refined) input's vertices and tets in the same order, boundary vertices bit-exactly
 // at the map's doubles, every other coordinate printed with %.17g. Refinement (chord splits, cone
 // repair) happens only when --refined-input is given (the refined source is written there; the pair
 // has identical connectivity); without it the connectivity is fixed (as with --no-refine).
-// --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte → TLC → link-kernel → FFM);
+// --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte or --initial → TLC → link-kernel →
+// local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
 // Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
 // Certification re-reads the written files and runs the exact check on exactly those numbers.
@@ -14,6 +20,7 @@
 // it can be inspected; it must not be used as a valid map); 2 usage or bad input.
 #include "tool_common.hpp"
 
+#include <volmap/boundary_faces.hpp>
 #include <volmap/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/volume_map.hpp>
@@ -22,14 +29,14 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
-  std::string in_path, map_path, out_path, refined_path, rationals_path, method = "ffm";
+  std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
   double max_growth = 0.05, time_limit = 0;
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false;
-  app.add_option("input", in_path, "source tet mesh (.mesh, VOLMAP-positive)")->required();
-  app.add_option("map", map_path, "boundary map `vid x y z` (0-based)")->required();
+  bool ffm_rest_first = false, no_local = false;
+  app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
+  app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
   app.add_option("--method", method, "ffm (default: Tutte → FFM → repair) or tlc (Du et al. 2020 baseline)")
       ->check(CLI::IsMember({"ffm", "tlc"}));
@@ -45,12 +52,32 @@ int main(int argc, char** argv) {
   app.add_option("--ffm-inner", ffm_inner, "cascade: L-BFGS iterations per FFM outer step (0 = default)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
+  app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
+  app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
-    const volmap::TetMeshData input = volmap::read_medit(in_path);
-    const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
-    volmap::validate_boundary_map(map, input, map_path);
+    const volmap::TetMeshData input = volmap::read_tet_mesh(in_path);
     volmap::VolumeMapOptions opt;
+    if (!initial_path.empty()) {
+      const volmap::TetMeshData initial = volmap::read_tet_mesh(initial_path);
+      if (initial.num_vertices() != input.num_vertices() || initial.tets != input.tets)
+        throw volmap::Error(volmap::ErrorKind::BadInput, initial_path, 0,
+                            "the initial map must have the input's vertices and the same tets in the same order (" +
+                                std::to_string(initial.num_vertices()) + " vertices / " + std::to_string(initial.num_tets()) + " tets vs " +
+                                std::to_string(input.num_vertices()) + " / " + std::to_string(input.num_tets()) + ")");
+      opt.initial_xyz = initial.xyz;
+    }
+    volmap::BoundaryMap map;
+    if (map_path == "-") {
+      if (initial_path.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "map `-` needs --initial (the boundary map is taken from it)");
+      for (std::uint32_t v : volmap::boundary_vertex_ids(input)) {
+        map.vids.push_back(v);
+        for (int i = 0; i < 3; ++i) map.xyz.push_back(opt.initial_xyz[3 * std::size_t(v) + i]);
+      }
+    } else {
+      map = volmap::read_boundary_map(map_path);
+      volmap::validate_boundary_map(map, input, map_path);
+    }
     opt.method = method == "tlc" ? volmap::MapMethod::Tlc : volmap::MapMethod::Ffm;
     opt.allow_refinement = !no_refine && !refined_path.empty();
     opt.max_growth = max_growth;
@@ -60,6 +87,7 @@ int main(int argc, char** argv) {
     opt.tlc_time_share = tlc_share;
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;
+    opt.local_untangle = !no_local;
     const volmap::VolumeMapResult r = volmap::compute_volume_map(input, map, opt);
 
     volmap::TetMeshData out = r.source;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -68,6 +69,20 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   }
   for (auto v : bverts)
     if (!seen[v]) throw Error(ErrorKind::BadInput, "", 0, "boundary vertex " + std::to_string(v) + " has no prescribed position");
+  const bool has_initial = !options.initial_xyz.empty();
+  if (has_initial) {
+    if (options.initial_xyz.size() != 3 * nv)
+      throw Error(ErrorKind::BadInput, "", 0, "the initial map has " + std::to_string(options.initial_xyz.size() / 3) + " vertices, the mesh " + std::to_string(nv));
+    for (auto v : bverts)
+      for (int i = 0; i < 3; ++i)
+        if (options.initial_xyz[3 * std::size_t(v) + i] != r.target_xyz[3 * std::size_t(v) + i])
+          throw Error(ErrorKind::BadInput, "", 0, "the initial map moves boundary vertex " + std::to_string(v) + " away from its prescribed position");
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(options.initial_xyz[3 * v + i]))
+          throw Error(ErrorKind::BadInput, "", 0, "the initial map has a non-finite coordinate at vertex " + std::to_string(v));
+    r.target_xyz = options.initial_xyz;
+  }
   if (exact_nonpositive(input.xyz, input.tets) != 0)
     throw Error(ErrorKind::BadInput, "", 0, "the source mesh has tets with orient3d <= 0 (not VOLMAP-positive)");
 
@@ -109,11 +124,21 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     r.stages.push_back({"chord-split", elapsed() - t0, 0});
   }
 
-  // §2 Tutte 3D.
+  // §2 Tutte 3D, or the given initial map (chord-split vertices placed by a local Laplacian).
   t0 = elapsed();
-  solve_uniform_laplacian(r.on_boundary.size(), unique_tet_edges(r.source), r.on_boundary, r.target_xyz);
-  std::size_t bad = stage_done("tutte3d", t0);
-  if (bad == 0) r.certified_by = "tutte3d";
+  std::string start_name = "tutte3d";
+  if (has_initial) {
+    start_name = "initial";
+    if (r.source.num_vertices() > nv) {
+      std::vector<std::uint8_t> keep(r.source.num_vertices(), 0);
+      std::fill(keep.begin(), keep.begin() + std::ptrdiff_t(nv), std::uint8_t(1));
+      solve_uniform_laplacian(keep.size(), unique_tet_edges(r.source), keep, r.target_xyz);
+    }
+  } else {
+    solve_uniform_laplacian(r.on_boundary.size(), unique_tet_edges(r.source), r.on_boundary, r.target_xyz);
+  }
+  std::size_t bad = stage_done(start_name, t0);
+  if (bad == 0) r.certified_by = start_name;
 
   // §6 TLC: the whole method with --method tlc (the published baseline), the first untangler of the
   // default cascade otherwise (measured on G1 bone/duck: converges faster than FFM from Tutte).
@@ -123,6 +148,17 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     relocate_into_link_kernels(r.source.tets, r.on_boundary, r.target_xyz, 50);
     bad = stage_done("link-kernel", t0);
     if (bad == 0) r.certified_by = "link-kernel";
+  };
+  // Local FFM (Newton) on the region of the remaining non-positive tets, the rest frozen.
+  auto local_ffm = [&](double share) {
+    if (bad == 0 || options.method != MapMethod::Ffm || !options.local_untangle || out_of_time()) return;
+    t0 = elapsed();
+    LocalUntangleOptions lo;
+    const double rem = remaining();
+    lo.time_limit_seconds = rem > 0 ? share * rem : 0;
+    ffm_local_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, lo);
+    bad = stage_done("ffm-local", t0);
+    if (bad == 0) r.certified_by = "ffm-local";
   };
   if (bad > 0 && !out_of_time()) {
     t0 = elapsed();
@@ -145,6 +181,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
       if (bad == 0) r.certified_by = "tlc-small-alpha";
       link_kernel();
     }
+    local_ffm(0.25);
   }
   // §5 FFM (regular reference, then rest shape), each followed by the link-kernel pre-step.
   if (bad > 0 && options.method == MapMethod::Ffm) {
@@ -155,13 +192,16 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
       t0 = elapsed();
       FfmOptions fo;
       fo.reference = ref;
-      fo.time_limit_seconds = remaining();
+      const double rem = remaining();
+      fo.time_limit_seconds = rem > 0 && options.local_untangle ? 0.6 * rem : rem;
+      fo.stall_outer_iterations = options.local_untangle ? 40 : 0;
       if (options.ffm_max_lbfgs_iterations > 0) fo.max_lbfgs_iterations = options.ffm_max_lbfgs_iterations;
       ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
       const std::string name = ref == ReferenceShape::RegularTet ? "ffm-regular" : "ffm-rest";
       bad = stage_done(name, t0);
       if (bad == 0) r.certified_by = name;
       link_kernel();
+      local_ffm(0.25);
     }
   }
 

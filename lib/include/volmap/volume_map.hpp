@@ -1,8 +1,10 @@
 // volmap/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
 // Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
-// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp) → TLC (§6; the whole method with
-// MapMethod::Tlc) → [cascade only] link-kernel relocation (§7 pre-step) → TLC with alpha 1e-8 →
-// FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation →
+// blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp; or a given
+// initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
+// relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
+// global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
+// and local FFM →
 // B1 cone repair (§7: NOT implemented yet, a no-op) → validity-preserving quality pass (§5).
 // Each stage is judged by the exact count of non-positive tets and undone when it makes it worse.
 // A result is certified only when the exact check (orient3d > 0 on every tet, on the doubles
@@ -42,6 +44,13 @@ struct VolumeMapOptions {
   double tlc_time_share = 0.5;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
+  // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
+  // run after each global untangling stage that stops short of certification (cascade only).
+  bool local_untangle = true;
+  // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
+  // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
+  // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
+  std::vector<double> initial_xyz;
 };
 
 struct VolumeMapStage {

@@ -1,0 +1,127 @@
+// untangle_support.hpp — machinery shared by the per-tet untanglers (FFM in ffm.cpp, TLC in tlc.cpp):
+// the exact non-positive count, edge matrices, the free-variable layout (3 doubles per unlocked vertex,
+// in increasing vertex id) with its CSR gather of per-tet gradients, the box-of-side-10 frame of
+// mapping.md §5, and the L-BFGS objective guard (time limit + exact stop).
+// Conventions: flat xyz arrays (3 doubles per vertex), tets as 4 0-based ids; edge matrices row-major,
+// T[3*i+k] = coordinate i of edge k (edge k = x_{k+1} − x_0). A VOLMAP-positive tet (orient3d > 0)
+// has det T < 0. Internal header (lib/src): not part of the public API.
+#pragma once
+
+#include <Eigen/Core>
+#include <LBFGS.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace volmap::untangle {
+
+using Clock = std::chrono::steady_clock;
+
+// Exact number of tets with orient3d <= 0 (all tets when the batch predicate refuses the input).
+std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
+// Ids of the tets with exact orient3d <= 0.
+std::vector<std::uint32_t> exact_nonpositive_tets(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
+
+inline double det3(const double* A) {
+  return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
+}
+
+inline void edge_matrix(const double* x, const std::uint32_t* t, double* T) {
+  const double* p0 = x + 3 * std::size_t(t[0]);
+  for (int k = 0; k < 3; ++k) {
+    const double* pk = x + 3 * std::size_t(t[k + 1]);
+    for (int i = 0; i < 3; ++i) T[3 * i + k] = pk[i] - p0[i];
+  }
+}
+
+// Chain rule from ∂E/∂T (row-major 3x3) to the 12 vertex gradients of the tet (vertex-major xyz).
+inline void edge_gradient_to_vertices(const double* dT, double* out12) {
+  for (int i = 0; i < 3; ++i) {
+    out12[i] = -(dT[3 * i] + dT[3 * i + 1] + dT[3 * i + 2]);
+    for (int k = 0; k < 3; ++k) out12[3 * (k + 1) + i] = dT[3 * i + k];
+  }
+}
+
+// Free vertices as optimisation variables, and the vertex → incident (tet*4+local) slots they gather from.
+struct FreeVertexLayout {
+  std::vector<std::int64_t> free_index;      // per vertex: variable block or -1 (locked)
+  std::vector<std::uint32_t> free_vertices;  // variable block -> vertex
+  std::vector<std::uint32_t> adj_offset;     // CSR over free blocks
+  std::vector<std::uint32_t> adj_slot;
+
+  void build(std::size_t num_vertices, const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked);
+  std::size_t num_variables() const { return 3 * free_vertices.size(); }
+  // x[free vertices] = vars (parallel).
+  void load(const double* vars, double* x) const;
+  // vars = x[free vertices].
+  void extract(const double* x, double* vars) const;
+  // grad[block] = Σ of the tet gradients (12 per tet) over the block's incident slots (parallel).
+  void gather(const double* tet_grad, double* grad) const;
+};
+
+// Affine frame: scaled = (x − center)·scale, with the bounding box of the fitted points of side `side`.
+struct BoxFrame {
+  double center[3] = {0, 0, 0};
+  double scale = 1;
+  // Throws Error(BadInput) (prefixed by `who`) when the points are degenerate or not finite.
+  void fit(const std::vector<double>& xyz, double side, const char* who);
+  std::vector<double> to_scaled(const std::vector<double>& xyz) const;
+  // target_xyz[free vertices] = vars mapped back to the unscaled frame (locked vertices untouched).
+  void write_back(const FreeVertexLayout& layout, const double* vars, std::vector<double>& target_xyz) const;
+};
+
+struct CertifiedStop {};
+struct TimeStop {};
+
+// LBFGSpp objective around an energy: checks the deadline (throws TimeStop), optionally acts as a
+// barrier (+∞ when a double determinant is not positive) and, when every double determinant is
+// positive, runs the exact check on the unscaled candidate every `check_period` evaluations and
+// throws CertifiedStop when it passes. `last_x` holds the point at which a stop was thrown.
+struct GuardedObjective {
+  // E(vars); writes the gradient when grad != nullptr and sets *all_positive (double test).
+  std::function<double(const double* vars, double* grad, bool* all_positive)> evaluate;
+  const FreeVertexLayout* layout = nullptr;
+  const BoxFrame* frame = nullptr;
+  const std::vector<std::uint32_t>* tets = nullptr;
+  std::vector<double>* candidate = nullptr;  // unscaled full coordinates (locked vertices exact)
+  bool stop_when_certified = true;
+  bool barrier = false;
+  bool has_deadline = false;
+  Clock::time_point deadline;
+  long evaluations = 0;
+  long next_exact_check = 0;
+  int check_period = 10;
+  Eigen::VectorXd last_x;
+
+  void set_time_limit(Clock::time_point start, double seconds);
+  bool past_deadline() const { return has_deadline && Clock::now() > deadline; }
+  // Writes vars into the candidate and returns true when its exact count is 0.
+  bool exactly_certified(const double* vars);
+  double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad);
+};
+
+// L-BFGS parameters shared by the untanglers: memory 7, gradient test ‖g‖ ≤ gtol (absolute),
+// relative energy-decrease test over one iteration when ftol > 0, at most 40 line-search steps.
+LBFGSpp::LBFGSParam<double> lbfgs_param(int max_iterations, double gtol, double ftol, int linesearch);
+
+// Runs one LBFGSpp minimisation from x; returns the iterations done, or -1 when the line search gave
+// up (LBFGSpp throws std::runtime_error / std::logic_error): x is then the solver's last iterate.
+// CertifiedStop and TimeStop propagate.
+template <class Solver>
+long run_lbfgs(Solver& solver, GuardedObjective& objective, Eigen::VectorXd& x) {
+  double fx = 0;
+  try {
+    return solver.minimize(objective, x, fx);
+  } catch (const CertifiedStop&) {
+    throw;
+  } catch (const TimeStop&) {
+    throw;
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+}  // namespace volmap::untangle
