@@ -341,3 +341,35 @@ int main(int argc, char** argv) {
   benchmark::Shutdown();
   return 0;
 }
+
+// ---- Cost of the per-call MXCSR check (predicates/src/fp_env.hpp) -------------------------------
+// Every public predicate reads MXCSR (stmxcsr, mask, predicted branch) before its filter and re-enters
+// the default FP environment when FTZ/DAZ/non-nearest rounding is on. The library has no check-free
+// entry point, so the anchor is differential, in the same run, on the random set (stage A decides:
+// the path where one check weighs most):
+//   mxcsr_orient3d_1check   volmap::orient3d as shipped (its own check)
+//   mxcsr_orient3d_2checks  the same call behind one more, identical, caller-side check
+//   mxcsr_check_only        the check alone in the loop (plus the loop's own load/add)
+// cost of one check ≈ 2checks − 1check; overhead of the check in orient3d ≈ cost / (1check − cost).
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+namespace {
+inline bool mxcsr_is_default() { return (_mm_getcsr() & 0xE040u) == 0u; }  // fp_env.hpp's test
+void mxcsr_orient3d_1check(benchmark::State& state) {
+  run_scalar(state, tuples(Set::Random, 3, 4),
+             [](const Tuples& t, int i) { return long(volmap::orient3d(P(0), P(1), P(2), P(3))); });
+}
+void mxcsr_orient3d_2checks(benchmark::State& state) {
+  run_scalar(state, tuples(Set::Random, 3, 4), [](const Tuples& t, int i) {
+    return __builtin_expect(mxcsr_is_default(), 1) ? long(volmap::orient3d(P(0), P(1), P(2), P(3))) : 7L;
+  });
+}
+void mxcsr_check_only(benchmark::State& state) {
+  run_scalar(state, tuples(Set::Random, 3, 4),
+             [](const Tuples& t, int i) { return long(mxcsr_is_default()) + long(P(0)[0] > 0.0); });
+}
+BENCHMARK(mxcsr_orient3d_1check);
+BENCHMARK(mxcsr_orient3d_2checks);
+BENCHMARK(mxcsr_check_only);
+}  // namespace
+#endif

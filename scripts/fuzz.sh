@@ -4,8 +4,9 @@
 #   Longer runs in parallel: build once, then e.g.
 #   VOLMAP_FUZZ_NO_BUILD=1 scripts/fuzz.sh 600 fuzz_medit fuzz_vtk & VOLMAP_FUZZ_NO_BUILD=1 scripts/fuzz.sh 600 fuzz_vtu ...
 # Seeds: small files from ../shared/data (read in place, copied only into the scratch build tree)
-# plus a few generated ones. Prints per target: executions, coverage, crashes. Exit 1 on a finding
-# (the crashing input is kept in build-fuzz/findings/).
+# plus a few generated ones (generated only, with a message, when ../shared/data is absent). Prints
+# per target: executions, coverage, crashes. Exit 1 on a finding: a non-zero libFuzzer exit or any new
+# crash-/leak-/timeout-/oom- artifact (kept in build-fuzz/findings/<target>-*).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -68,7 +69,11 @@ printf '\x08\x00\x01\x03\x07\x00\x01\x05\x07\x00\x02\x03\x07\x00\x02\x06\x07\x00
 printf '\x02%s\n' 1/2 3 -4/6 0 5/1 7/3 > "$BUILD/corpus/fuzz_rationals/seed1"
 printf '0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n' > "$BUILD/corpus/fuzz_boundary_map/seed1"
 
+if [ -d "$DATA" ]; then echo "== fuzz seeds: $DATA and generated files"
+else echo "== fuzz seeds: $DATA absent, generated seeds only"; fi
 mkdir -p "$BUILD/findings"
+# artifacts <target>: how many crash/leak/timeout/oom artifacts this target has left so far
+artifacts() { find "$BUILD/findings" -maxdepth 1 -type f \( -name "$1-crash-*" -o -name "$1-leak-*" -o -name "$1-timeout-*" -o -name "$1-oom-*" \) | wc -l; }
 status=0
 printf '%-22s %12s %8s %8s %s\n' target executions cov ft result
 for t in "${TARGETS[@]}"; do
@@ -76,11 +81,13 @@ for t in "${TARGETS[@]}"; do
   [ -x "$exe" ] || { echo "$t: not built"; status=1; continue; }
   mkdir -p "$BUILD/corpus/$t"
   log=$BUILD/$t.log
+  before=$(artifacts "$t")
   if (cd "$BUILD/findings" && "$exe" "$BUILD/corpus/$t" -max_total_time="$SECONDS_PER" -max_len=65536 \
-        -rss_limit_mb=2560 -timeout=10 -print_final_stats=1 >"$log" 2>&1); then
+        -rss_limit_mb=2560 -timeout=10 -print_final_stats=1 -artifact_prefix="$BUILD/findings/$t-" >"$log" 2>&1) &&
+     [ "$(artifacts "$t")" = "$before" ]; then
     result=ok
   else
-    result="FINDING (see $log)"; status=1
+    result="FINDING (see $log and $BUILD/findings/$t-*)"; status=1
   fi
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || echo '?')

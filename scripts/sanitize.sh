@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (g++), in build-asan/.
-#   scripts/sanitize.sh                 build everything, run ctest -LE long (the whole default suite)
+#   scripts/sanitize.sh                 build everything, run ctest -LE long (the whole default suite;
+#                                       what CI runs, see .ci/run)
 #   scripts/sanitize.sh --subset        build the tools and the parser / mesh / predicate / bad-input
-#                                       tests only and run those binaries (what CI runs; see .ci/run)
+#                                       tests only and run those binaries (quicker local check)
 #   scripts/sanitize.sh [ctest args]    build everything, run ctest with these arguments
 # Any sanitizer report aborts the test that triggered it (UBSan is built with -fno-sanitize-recover,
 # ASan with abort_on_error), so a green run means no report. Prints the wall time of build and tests.
