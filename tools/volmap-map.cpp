@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
     const volmap::TetMeshData input = volmap::read_medit(in_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::validate_boundary_map(map, input, map_path);
+    for (const std::string* output : {&out_path, &refined_path, &rationals_path})  // before the long run
+      if (!output->empty()) volmap_tools::require_output_folder(*output);
     volmap::VolumeMapOptions opt;
     opt.method = method == "tlc" ? volmap::MapMethod::Tlc : volmap::MapMethod::Ffm;
     opt.allow_refinement = !no_refine && !refined_path.empty();
