@@ -542,7 +542,7 @@ TEST_CASE("bad inputs: ../shared/data/negative (open, non-genus-0, self-intersec
   fx.report();
 }
 
-TEST_CASE("bad inputs: rationals files, unreadable paths and the remaining options of every tool") {
+TEST_CASE("bad inputs: rationals files and unreadable paths and the remaining options of every tool") {
   Fixture fx;
   auto& c = fx.corpus;
   const std::string good = c.in("good.mesh").string(), map = c.in("good_map.txt").string();
