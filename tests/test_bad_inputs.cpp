@@ -113,7 +113,7 @@ std::vector<std::string> listing(const fs::path& dir) {
   std::vector<std::string> names;
   std::error_code ec;
   for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); ++it)
-    names.push_back(fs::relative(it->path(), dir).string());
+    names.push_back(it->path().lexically_relative(dir).string());  // lexical: symlink loops are inputs too
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -515,5 +515,82 @@ TEST_CASE("bad inputs: ../shared/data/negative (open, non-genus-0, self-intersec
       c.expect("volmap-tetrahedralize", {path, "@OUT/t.mesh"}, name, {1, 2});
     }
   }
+  fx.report();
+}
+
+TEST_CASE("bad inputs: rationals files and unreadable paths and the remaining options of every tool") {
+  Fixture fx;
+  auto& c = fx.corpus;
+  const std::string good = c.in("good.mesh").string(), map = c.in("good_map.txt").string();
+  // Exact coordinates of good.mesh: one rational per line, x y z per vertex (27 vertices = 81 lines).
+  std::string rat;
+  for (double x : fx.grid.xyz) rat += std::to_string(int(x)) + "\n";
+  spit(c.in("good.rat"), rat);
+  c.control("volmap-map-check", {good, good, "--rationals-in", c.in("good.rat").string()});
+  c.control("volmap-view", {good, "-o", "@OUT/v.html"});
+  auto rationals = [&](const std::string& name, const std::string& text) {
+    spit(c.in(name), text);
+    c.expect("volmap-map-check", {good, good, "--rationals-in", c.in(name).string()}, name, {1, 2});
+    c.expect("volmap-map-check", {good, good, "--rationals-out", c.in(name).string()}, name, {1, 2});
+  };
+  rationals("r_empty.rat", "");
+  rationals("r_truncated.rat", rat.substr(0, rat.size() / 2));
+  rationals("r_too_many.rat", rat + "1\n");
+  rationals("r_zero_den.rat", replace_once(rat, "0\n", "1/0\n"));
+  rationals("r_garbage.rat", replace_once(rat, "0\n", "1/x\n"));
+  rationals("r_float.rat", replace_once(rat, "0\n", "0.5\n"));
+  rationals("r_nan.rat", replace_once(rat, "0\n", "nan\n"));
+  rationals("r_binary.rat", std::string("\x00\xff/\x01\n", 5));
+  rationals("r_overlong.rat", replace_once(rat, "0\n", std::string(200000, '9') + "/" + std::string(200000, '7') + "\n"));
+  fs::create_directories(c.in("r_directory.rat"));
+  c.expect("volmap-map-check", {good, good, "--rationals-in", c.in("r_directory.rat").string()}, "r_directory.rat",
+           {1, 2});
+  c.expect("volmap-map-check", {good, good, "--rationals-in", c.in("r_missing.rat").string()}, "r_missing.rat",
+           {1, 2});
+
+  // Unreadable paths that stay unreadable for root too: a symlink loop and a path through a file.
+  fs::create_symlink("loop.mesh", c.in("loop.mesh"));
+  const std::string loop = c.in("loop.mesh").string(), through = good + "/x.mesh";
+  for (const std::string& bad : {loop, through}) {
+    const std::string name = fs::path(bad).filename().string();
+    c.expect("volmap-convert", {bad, "@OUT/x.vtu"}, name);
+    c.expect("volmap-tetmesh-check", {bad}, name, {1, 2});
+    c.expect("volmap-tutte3d", {bad, map, "@OUT/t.mesh"}, name, {1, 2});
+    c.expect("volmap-map", {good, bad, "@OUT/m.mesh"}, name, {1, 2});
+    c.expect("volmap-map-check", {good, bad}, name, {1, 2});
+    c.expect("volmap-metrics", {bad, good}, name, {1, 2});
+    c.expect("volmap-surface-map", {"cube", bad, "@OUT/map.txt"}, name, {1, 2});
+    c.expect("volmap-surface-map-check", {good, bad, "--domain", "cube"}, name, {1, 2});
+    c.expect("volmap-tetrahedralize", {bad, "@OUT/t.mesh"}, name, {1, 2});
+    c.expect("volmap-view", {bad, "-o", "@OUT/v.html"}, name, {1, 2});
+  }
+  // chmod 000 only bites without root (CI may run as root: then it is a readable file, not a case).
+  if (geteuid() != 0) {
+    spit(c.in("no_read.mesh"), fx.good_mesh);
+    fs::permissions(c.in("no_read.mesh"), fs::perms::none);
+    c.expect("volmap-convert", {c.in("no_read.mesh").string(), "@OUT/x.vtu"}, "no_read.mesh");
+    c.expect("volmap-tetmesh-check", {c.in("no_read.mesh").string()}, "no_read.mesh", {1, 2});
+    fs::permissions(c.in("no_read.mesh"), fs::perms::owner_all);
+  }
+
+  // Secondary inputs and outputs not covered above.
+  const std::string nowhere = (fx.root / "no" / "such" / "dir").string();
+  c.expect("volmap-metrics", {good, good, "--original", c.in("m_truncated.mesh").string()}, "m_truncated.mesh", {1, 2});
+  c.expect("volmap-metrics", {good, good, "--vtu", nowhere + "/m.vtu"}, "no/such/dir");
+  // volmap-map once wrote m.mesh and then failed on the missing rationals folder (partial output);
+  // with --refined-input it succeeded when no refinement was needed: all output folders are now
+  // checked before the run.
+  c.expect("volmap-map", {good, map, "@OUT/m.mesh", "--rationals", nowhere + "/m.rat"}, "no/such/dir", {1, 2});
+  c.expect("volmap-map", {good, map, "@OUT/m.mesh", "--refined-input", nowhere + "/r.mesh"}, "no/such/dir", {1, 2});
+  c.expect("volmap-map-check", {good, good, "--boundary", c.in("one_cube_map.txt").string()}, "one_cube_map.txt",
+           {1, 2});
+  c.expect("volmap-surface-map", {"cube", good, "@OUT/map.txt", "--refined", nowhere + "/r.mesh"}, "no/such/dir",
+           {1, 2});
+  c.expect("volmap-tetmesh-check", {good, "--fix", nowhere + "/f.mesh"}, "no/such/dir", {1, 2});
+  c.expect("volmap-view", {good, "--bundle", c.in("missing_bundle.js").string(), "-o", "@OUT/v.html"},
+           "missing_bundle.js", {1, 2});
+  c.expect("volmap-shapes", {(fs::path(good) / "shapes").string()}, "good.mesh", {1, 2});
+  c.expect("volmap-run", {"list", (c.dir / "missing_dir").string()}, "missing_dir", {1, 2});
+  c.expect("volmap-run", {"case", (c.dir / "missing_dir").string(), "G1/bone_cube", "--method", "tutte3d"}, "missing_dir|bone_cube", {1, 2});
   fx.report();
 }

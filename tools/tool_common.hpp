@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -23,6 +24,15 @@ constexpr int kExitBadInput = 2;
 // Runs a tool body: parses the CLI11 app, maps exceptions to exit codes with a one-line reason.
 // `body` returns the exit code. `json_mode` (when non-null and true) makes bad-input errors also
 // print {"ok":false,"error":...} on stdout so `--json` consumers always get one object.
+// Refuses an output path whose folder is missing (or which is a folder) before any work is done, so
+// that a tool with several outputs never writes the first and then fails on the next one.
+inline void require_output_folder(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p(path), dir = p.parent_path().empty() ? "." : p.parent_path();
+  if (!std::filesystem::is_directory(dir, ec)) volmap::throw_io(path, "output folder does not exist");
+  if (std::filesystem::is_directory(p, ec)) volmap::throw_io(path, "output path is a directory");
+}
+
 // Runs `f`; a volmap::Error that names no file (library functions working on arrays cannot know
 // it) is re-thrown naming `file`, so the tool's one-line reason says which input was at fault.
 template <class F>

@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const volmap::TetMeshData input = volmap::read_tet_mesh(in_path);
+    for (const std::string* output : {&out_path, &refined_path, &rationals_path})  // before the long run
+      if (!output->empty()) volmap_tools::require_output_folder(*output);
     volmap::VolumeMapOptions opt;
     if (!initial_path.empty()) {
       const volmap::TetMeshData initial = volmap::read_tet_mesh(initial_path);
