@@ -57,6 +57,7 @@ using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
 using untangle::exact_nonpositive;
+using untangle::signed_volume_sum;
 
 // Inverse of a row-major 3x3 matrix; returns false when singular.
 inline bool inverse3(const double* A, double* inv) {
@@ -231,14 +232,8 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
   m.x = m.frame.to_scaled(target_xyz);
 
   // vol(D): with a fixed boundary, Σ signed target volume is the domain volume.
-  double domain_volume = 0, source_volume = 0;
-  double T[9];
-  for (std::size_t t = 0; t < m.nt; ++t) {
-    edge_matrix(m.x.data(), &tets[4 * t], T);
-    domain_volume += -det3(T) / 6.0;
-    edge_matrix(source_xyz.data(), &tets[4 * t], T);
-    source_volume += -det3(T) / 6.0;
-  }
+  const double domain_volume = signed_volume_sum(m.x.data(), tets);
+  const double source_volume = signed_volume_sum(source_xyz.data(), tets);
   if (!(domain_volume > 0)) throw Error(ErrorKind::BadInput, "", 0, "ffm: the boundary map encloses a non-positive volume (mirrored map?)");
   if (!(source_volume > 0)) throw Error(ErrorKind::BadInput, "", 0, "ffm: the source mesh has non-positive total volume");
 
@@ -257,6 +252,7 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
     }
   } else {
     const double c = std::cbrt(domain_volume / source_volume);
+    double T[9];
     for (std::size_t t = 0; t < m.nt; ++t) {
       edge_matrix(source_xyz.data(), &tets[4 * t], T);
       for (double& e : T) e *= c;

@@ -25,6 +25,7 @@ using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
 using untangle::exact_nonpositive;
+using untangle::signed_volume_sum;
 
 // Per-tet data of the TLC energy in the scaled frame.
 struct TlcProblem {
@@ -128,12 +129,9 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   if (p.layout.free_vertices.empty()) return finish();
   p.frame.fit(target_xyz, 10.0, "tlc");
   p.x = p.frame.to_scaled(target_xyz);
-  double signed_volume = 0, rest_measure = 0;
+  const double signed_volume = signed_volume_sum(p.x.data(), tets);
+  double rest_measure = 0;
   double T[9];
-  for (std::size_t t = 0; t < p.nt; ++t) {
-    edge_matrix(p.x.data(), &tets[4 * t], T);
-    signed_volume += -det3(T) / 6.0;
-  }
   p.rest_gram.resize(9 * p.nt);
   if (options.tutte_form) {
     rest_measure = double(p.nt) * std::sqrt(2.0) / 12.0;

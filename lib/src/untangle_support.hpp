@@ -37,6 +37,17 @@ inline void edge_matrix(const double* x, const std::uint32_t* t, double* T) {
   }
 }
 
+// Σ of the VOLMAP-signed tet volumes (−det(edge matrix)/6: positive for orient3d > 0), in double.
+// With a fixed boundary map this is the enclosed domain volume, whatever the interior does.
+inline double signed_volume_sum(const double* xyz, const std::vector<std::uint32_t>& tets) {
+  double sum = 0, T[9];
+  for (std::size_t t = 0; t < tets.size() / 4; ++t) {
+    edge_matrix(xyz, &tets[4 * t], T);
+    sum += -det3(T) / 6.0;
+  }
+  return sum;
+}
+
 // Chain rule from ∂E/∂T (row-major 3x3) to the 12 vertex gradients of the tet (vertex-major xyz).
 inline void edge_gradient_to_vertices(const double* dT, double* out12) {
   for (int i = 0; i < 3; ++i) {
