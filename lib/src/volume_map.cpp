@@ -33,11 +33,16 @@ std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<
 VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
   const auto start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  // With refinement allowed, the untangling cascade gets only a share of the time limit so that B1
+  // cone repair (and the short untangling rounds after it) run while time is left.
+  const bool b1_rounds = options.allow_refinement && options.method == MapMethod::Ffm;
+  double phase_limit = options.time_limit_seconds;
+  if (b1_rounds && options.time_limit_seconds > 0) phase_limit = options.refine_time_share * options.time_limit_seconds;
   auto remaining = [&]() -> double {
-    if (options.time_limit_seconds <= 0) return 0;
-    return std::max(1e-3, options.time_limit_seconds - elapsed());
+    if (phase_limit <= 0) return 0;
+    return std::max(1e-3, phase_limit - elapsed());
   };
-  auto out_of_time = [&] { return options.time_limit_seconds > 0 && elapsed() >= options.time_limit_seconds; };
+  auto out_of_time = [&] { return phase_limit > 0 && elapsed() >= phase_limit; };
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (options.max_threads > 0)
@@ -205,24 +210,33 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     }
   }
 
-  // §7 B1 cone repair of what remains.
-  if (bad > 0 && options.allow_refinement && options.method == MapMethod::Ffm && !out_of_time()) {
-    t0 = elapsed();
-    ConeRepairOptions co;
-    co.max_added_tets = growth_budget > 0 ? growth_budget : 1;
-    const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
-    r.cone_patches = cr.patches;
-    if (cr.patches > 0) r.refined = true;
-    bad = stage_done("cone-repair", t0);
-    if (bad == 0) r.certified_by = "cone-repair";
-    if (bad > 0 && cr.patches > 0 && !out_of_time()) {
-      // Re-run the untangler on the repaired mesh (its connectivity changed).
+  // §7 B1 cone repair of what remains, in rounds: repair → link-kernel relocation → a short FFM on the
+  // repaired mesh (its connectivity changed) → repair again. The net tet growth of B0 + B1 stays
+  // within max_growth · input tets.
+  if (bad > 0 && b1_rounds) {
+    phase_limit = options.time_limit_seconds;
+    for (int round = 0; round < 4 && bad > 0 && !out_of_time(); ++round) {
+      t0 = elapsed();
+      ConeRepairOptions co;
+      const long long used = (long long)r.source.num_tets() - (long long)nt;
+      co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget - used));
+      const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
+      r.cone_patches += cr.patches;
+      if (cr.patches > 0) r.refined = true;
+      const std::size_t bad_before = bad;
+      bad = stage_done("cone-repair", t0);
+      if (bad == 0) r.certified_by = "cone-repair";
+      link_kernel();
+      if (bad == 0 || out_of_time()) break;
       t0 = elapsed();
       FfmOptions fo;
-      fo.time_limit_seconds = remaining();
+      const double rem = remaining();
+      fo.time_limit_seconds = rem > 0 ? (round == 3 ? rem : std::max(1.0, 0.4 * rem)) : 0;
       ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
       bad = stage_done("ffm-after-repair", t0);
       if (bad == 0) r.certified_by = "ffm-after-repair";
+      link_kernel();
+      if (cr.patches == 0 && bad >= bad_before) break;  // nothing moves any more
     }
   }
 

@@ -34,7 +34,10 @@ struct ConeRepairResult {
   std::size_t max_region = 0;         // largest |R| applied
 };
 
-// NOT IMPLEMENTED YET (the patch replacement): returns with patches = 0 and leaves the mesh alone.
+// Repairs the clusters of non-positive target tets in place (source refined, target extended; new
+// vertices appended with on_boundary 0). A cluster whose region cannot be made a ball with strict
+// kernels in both spaces within the limits, or whose patch would exceed max_added_tets, is left
+// exactly as it was (counted in failed_clusters). Throws Error(BadInput) on inconsistent arrays.
 ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_boundary,
                              std::vector<double>& target_xyz, const ConeRepairOptions& options = {});
 

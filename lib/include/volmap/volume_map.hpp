@@ -4,8 +4,8 @@
 // initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
 // relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
 // global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
-// and local FFM →
-// B1 cone repair (§7: NOT implemented yet, a no-op) → validity-preserving quality pass (§5).
+// and local FFM → [with refinement] rounds of B1 cone repair (§7) → link-kernel → short FFM on the
+// repaired mesh → validity-preserving quality pass (§5).
 // Each stage is judged by the exact count of non-positive tets and undone when it makes it worse.
 // A result is certified only when the exact check (orient3d > 0 on every tet, on the doubles
 // returned) passes.
@@ -42,6 +42,9 @@ struct VolumeMapOptions {
   // share; on bone star 10 s → 16 s of TLC still leaves 8 bad, while FFM certifies bone octa
   // (12–13 s) only when it keeps enough time. So a larger TLC share buys nothing measured here.
   double tlc_time_share = 0.5;
+  // With refinement allowed (and a time limit): fraction of the time limit the untangling cascade may
+  // use before the B1 cone-repair rounds start (they may use the rest).
+  double refine_time_share = 0.5;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
