@@ -29,20 +29,33 @@
 set -u
 bin=$1; data=$2; out=$3; shift 3
 tmp=$(mktemp -d)
-echo "mesh,domain,exit,certified,nonpositive,input_tets,output_tets,growth,seconds,certified_by" > "$out"
+echo "mesh,domain,exit,certified,nonpositive,input_tets,output_tets,growth,seconds,certified_by,refined,recheck,mips3d,conformal" > "$out"
 for mesh in ${MESHES:-"$data"/G1/*.mesh}; do
   name=$(basename "$mesh" .mesh)
   for dom in cube tet pyr octa star; do
     map="$data/G1_$dom/${name}_$dom.txt"
     [ -f "$map" ] || continue
+    rm -f "$tmp/out.mesh" "$tmp/in.mesh"
     json=$("$bin/volmap-map" "$mesh" "$map" "$tmp/out.mesh" --refined-input "$tmp/in.mesh" --json "$@" 2>/dev/null)
     code=$?
-    echo "$json" | python3 -c "
-import json,sys
-try: j=json.loads(sys.stdin.read())
+    # Independent re-check of the written files (exit 0 = every tet exactly positive) and the
+    # VOLMAP metrics (clamped at 100, as in the paper) on certified outputs.
+    recheck=""; metrics="{}"
+    if [ -f "$tmp/out.mesh" ]; then
+      src="$mesh"; [ -f "$tmp/in.mesh" ] && src="$tmp/in.mesh"
+      "$bin/volmap-map-check" "$src" "$tmp/out.mesh" >/dev/null 2>&1; recheck=$?
+      [ "$code" = 0 ] && metrics=$("$bin/volmap-metrics" "$src" "$tmp/out.mesh" --json 2>/dev/null)
+    fi
+    MAPJSON="$json" METRICS="$metrics" python3 -c "
+import json,os
+try: j=json.loads(os.environ['MAPJSON'])
 except Exception: j={}
+try: m=json.loads(os.environ['METRICS']).get('energies',{})
+except Exception: m={}
+e=lambda k: m.get(k,{}).get('mean','') if m.get(k,{}).get('defined',True) else ''
 print(','.join(str(x) for x in ['$name','$dom',$code,j.get('certified',False),j.get('zero',0)+j.get('negative',0) if j else -1,
-      j.get('input_tets',''),j.get('output_tets',''),j.get('growth',''),j.get('seconds',''),j.get('certified_by','')]))" >> "$out"
+      j.get('input_tets',''),j.get('output_tets',''),j.get('growth',''),j.get('seconds',''),j.get('certified_by',''),j.get('refined',''),
+      '$recheck',e('mips3d'),e('conformal')]))" >> "$out"
   done
 done
 rm -rf "$tmp"

@@ -45,6 +45,9 @@ struct VolumeMapOptions {
   // With refinement allowed (and a time limit): fraction of the time limit the untangling cascade may
   // use before the B1 cone-repair rounds start (they may use the rest).
   double refine_time_share = 0.5;
+  // With refinement allowed: after each cascade stage that leaves at most this many non-positive
+  // tets, B1 cone repair is tried at once (a failed attempt changes nothing).
+  std::size_t early_repair_max_bad = 200;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
