@@ -20,6 +20,9 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <sys/wait.h>
@@ -201,30 +204,40 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
   }
 }
 
-// TODO: same case as above, which is in fact repairable (exit 0 is right); needs an impossible case.
-TEST_CASE("volmap-map: no false success with refinement allowed when the boundary map is folded (exit 1)" * doctest::skip()) {
+// An impossible case even with refinement: the boundary map mirrors the unit cube (x -> 1 - x).
+// The image surface is embedded but reversed, so the signed volumes of any tetrahedralisation
+// mapped with it sum to minus the cube's volume: no map with every tet positive exists, however
+// the mesh is refined. The mapper must say so (exit 1, "certified": false) within its time limit.
+TEST_CASE("volmap-map: no false success with refinement allowed when the boundary map is mirrored (exit 1)") {
   const auto tool = volmap_test::tool("volmap-map");
   if (!std::filesystem::exists(tool)) {
     MESSAGE("skipped: volmap-map not built");
     return;
   }
-  const int n = 2;
+  const int n = 3;
   const auto m = map_test::kuhn_grid(n);
   const auto bnd = map_test::grid_boundary_flags(n);
   volmap::BoundaryMap map;
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
     if (bnd[v]) {
       map.vids.push_back(std::uint32_t(v));
-      for (int i = 0; i < 3; ++i) map.xyz.push_back(v == 0 ? 0.9 : m.xyz[3 * v + i]);
+      map.xyz.push_back(1.0 - m.xyz[3 * v]);
+      map.xyz.push_back(m.xyz[3 * v + 1]);
+      map.xyz.push_back(m.xyz[3 * v + 2]);
     }
   const auto dir = volmap_test::scratch_dir("cone_repair_nfs");
   volmap::write_medit((dir / "in.mesh").string(), m);
   volmap::write_boundary_map((dir / "map.txt").string(), map);
   const std::string cmd = tool.string() + " " + (dir / "in.mesh").string() + " " + (dir / "map.txt").string() + " " +
                           (dir / "out.mesh").string() + " --refined-input " + (dir / "ref.mesh").string() +
-                          " --time-limit 5 --threads 1 > /dev/null 2>&1";
+                          " --time-limit 3 --threads 1 --json > " + (dir / "out.json").string() + " 2>/dev/null";
   const int rc = std::system(cmd.c_str());
   CHECK(WEXITSTATUS(rc) == 1);
+  std::ifstream json_file(dir / "out.json");
+  const std::string json((std::istreambuf_iterator<char>(json_file)), std::istreambuf_iterator<char>());
+  CHECK(json.find("\"certified\":false") != std::string::npos);
+  CHECK(json.find("\"certified\":true") == std::string::npos);
+  CHECK(json.find("\"boundary_volume_sign\":-1") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

@@ -73,6 +73,38 @@ TEST_CASE("feasibility: Kuhn cube has one chord edge (the diagonal) and six chor
   CHECK(r2.infeasible_at_fixed_connectivity());
 }
 
+TEST_CASE("feasibility: the exact sign of the volume enclosed by the boundary image") {
+  const int n = 3;
+  const auto m = map_test::kuhn_grid(n);
+  const auto bnd = map_test::grid_boundary_flags(n);
+  // Identity: the unit cube, positive.
+  CHECK(volmap::analyze_feasibility(m, bnd, m.xyz).boundary_volume_sign == 1);
+  // Mirrored (x -> 1 - x): the same cube enclosed with reversed orientation; impossible at any refinement.
+  auto mirrored = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) mirrored[3 * v] = 1.0 - mirrored[3 * v];
+  const auto r = volmap::analyze_feasibility(m, bnd, mirrored);
+  CHECK(r.boundary_volume_sign == -1);
+  CHECK(r.infeasible_with_any_refinement());
+  CHECK(r.infeasible_at_fixed_connectivity());
+  // Collapsed onto the plane z = 0.3 far from the origin (shifted by 1e8, where the double sum of
+  // the triple products is pure rounding noise): exactly zero volume, decided by the rational sum.
+  auto flat = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    flat[3 * v] += 1e8;
+    flat[3 * v + 1] -= 1e8;
+    flat[3 * v + 2] = 0.3;
+  }
+  CHECK(volmap::analyze_feasibility(m, bnd, flat).boundary_volume_sign == 0);
+  // The unit cube shifted as far: still positive (the filter may not decide, the exact sum does).
+  auto far = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    far[3 * v] += 1e8;
+    far[3 * v + 1] -= 1e8;
+    far[3 * v + 2] += 3e7;
+  }
+  CHECK(volmap::analyze_feasibility(m, bnd, far).boundary_volume_sign == 1);
+}
+
 TEST_CASE("B0: splitting the chord diagonal keeps ids, appends one interior vertex, children exactly positive") {
   auto m = map_test::kuhn_grid(1);
   std::vector<std::uint8_t> bnd(8, 1);

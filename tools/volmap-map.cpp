@@ -138,16 +138,21 @@ int main(int argc, char** argv) {
                        {"blocking_chord_faces", r.feasibility.blocking_chord_faces.size()},
                        {"fixed_nonpositive_tets", r.feasibility.fixed_nonpositive_tets.size()},
                        {"fixed_link_vertices", r.feasibility.fixed_link_vertices.size()},
+                       {"boundary_volume_sign", r.feasibility.boundary_volume_sign},
                        {"chord_edges_split", r.chord_edges_split},
                        {"chord_faces_split", r.chord_faces_split},
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};
+      if (r.feasibility.infeasible_with_any_refinement())
+        j["infeasible"] = "the boundary map encloses a non-positive volume: no injective map exists at any refinement";
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s: %s (%zu tets, %zu non-positive, growth %.4f, %s, %.2f s)\n", out_path.c_str(),
                   certified ? "certified injective" : "NOT injective", written.num_tets(), out_signs.zero + out_signs.negative,
                   r.growth(), certified ? r.certified_by.c_str() : "-", r.seconds);
+      if (r.feasibility.infeasible_with_any_refinement())
+        std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
       for (const auto& s : r.stages) std::printf("  %-18s %8.3f s  non-positive after: %zu\n", s.name.c_str(), s.seconds, s.nonpositive_after);
     }
     return certified ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;

@@ -21,6 +21,38 @@ bool collinear_exact(const double* a, const double* b, const double* c) {
   return orient2d(a_xy, b_xy, c_xy) == 0 && orient2d(a_yz, b_yz, c_yz) == 0 && orient2d(a_zx, b_zx, c_zx) == 0;
 }
 
+// Exact sign of 6 × the volume enclosed by the image of the outward boundary triangles:
+// Σ det[a; b; c] (the divergence theorem with the origin as apex; orient3d(a,b,c,d) > 0 for an
+// outward face and an inside point d, so a positively enclosed region gives a positive sum).
+// Double sum with a forward error bound (each term ≤ 5u·permanent, the summation ≤ n·u·Σ|term|,
+// u = 2^-53, taken with a 2× margin); an exact GMP rational sum when the filter cannot decide.
+int enclosed_volume_sign(const std::vector<std::array<std::uint32_t, 3>>& triangles, const double* X) {
+  double sum = 0, magnitude = 0;
+  for (const auto& t : triangles) {
+    const double* a = X + 3 * std::size_t(t[0]);
+    const double* b = X + 3 * std::size_t(t[1]);
+    const double* c = X + 3 * std::size_t(t[2]);
+    sum += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    magnitude += std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
+                 std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
+                 std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
+  }
+  const double u = 0x1p-53;
+  const double bound = 2.0 * (double(triangles.size()) + 8.0) * u * magnitude;
+  if (std::isfinite(sum) && std::isfinite(bound)) {
+    if (sum > bound) return 1;
+    if (sum < -bound) return -1;
+  }
+  Rational exact = 0;
+  for (const auto& t : triangles) {
+    Rational p[9];
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) p[3 * k + i] = X[3 * std::size_t(t[k]) + i];
+    exact += p[0] * (p[4] * p[8] - p[5] * p[7]) + p[1] * (p[5] * p[6] - p[3] * p[8]) + p[2] * (p[3] * p[7] - p[4] * p[6]);
+  }
+  return exact > 0 ? 1 : (exact < 0 ? -1 : 0);
+}
+
 }  // namespace
 
 FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& on_boundary,
@@ -47,6 +79,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   const std::vector<std::uint64_t> bfaces = boundary_half_faces(source);
   std::vector<std::array<std::uint32_t, 3>> btri(bfaces.size());
   for (std::size_t f = 0; f < bfaces.size(); ++f) btri[f] = half_face_vertices(source, bfaces[f]);
+  report.boundary_volume_sign = enclosed_volume_sign(btri, X);
   std::vector<std::uint32_t> tri_offset(nv + 1, 0), tri_list;
   for (const auto& t : btri)
     for (auto v : t) ++tri_offset[v + 1];

@@ -144,6 +144,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   }
   std::size_t bad = stage_done(start_name, t0);
   if (bad == 0) r.certified_by = start_name;
+  // A boundary image enclosing a non-positive volume (mirrored map): no map exists at any
+  // refinement (the target volumes sum to that volume), so no untangler is run.
+  if (r.feasibility.infeasible_with_any_refinement()) {
+    r.nonpositive = bad;
+    r.certified = false;
+    r.certified_by.clear();
+    r.seconds = elapsed();
+    return r;
+  }
 
   // §6 TLC: the whole method with --method tlc (the published baseline), the first untangler of the
   // default cascade otherwise (measured on G1 bone/duck: converges faster than FFM from Tutte).

@@ -31,10 +31,16 @@ struct FeasibilityReport {
   // strict kernel of a fixed link; reported, not decided).
   std::vector<std::uint32_t> fixed_link_vertices;
   std::size_t all_boundary_tets = 0;
+  // Exact sign of the volume enclosed by the boundary image (outward source orientation). The
+  // target volumes of any tetrahedralisation with this boundary sum to it, so when it is <= 0 (a
+  // mirrored or collapsed boundary map) no refinement can give every tet a positive volume.
+  int boundary_volume_sign = 1;
 
   bool infeasible_at_fixed_connectivity() const {
-    return !fixed_nonpositive_tets.empty() || !blocking_chord_edges.empty() || !blocking_chord_faces.empty();
+    return !fixed_nonpositive_tets.empty() || !blocking_chord_edges.empty() || !blocking_chord_faces.empty() ||
+           infeasible_with_any_refinement();
   }
+  bool infeasible_with_any_refinement() const { return boundary_volume_sign <= 0; }
 };
 
 FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& on_boundary,
