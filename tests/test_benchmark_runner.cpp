@@ -31,6 +31,14 @@ fs::path fresh_dir(const std::string& name) {
 
 }  // namespace
 
+// Skips the test case with a message when a tool it runs is not built.
+#define REQUIRE_BUILT_TOOL(path_var, name)              \
+  const auto path_var = volmap_test::tool(name);        \
+  if (!fs::exists(path_var)) {                          \
+    MESSAGE("skipped: " << (name) << " is not built");  \
+    return;                                             \
+  }
+
 TEST_CASE("discover_cases follows the VOLMAP layout deterministically") {
   const auto root = fresh_dir("discover");
   volmap_test::write_cube_case(root, "G2", "b", "tet");
@@ -84,11 +92,7 @@ TEST_CASE("run_process: exit codes, signals, timeouts, environment") {
 }
 
 TEST_CASE("run_benchmark records crashing and hanging candidates, appends, resumes; report is self-contained") {
-  const auto check_tool = volmap_test::tool("volmap-map-check");
-  if (!fs::exists(check_tool)) {
-    MESSAGE("skipped: volmap-map-check is not built");
-    return;
-  }
+  REQUIRE_BUILT_TOOL(check_tool, "volmap-map-check");
   const auto root = fresh_dir("runner");
   for (const char* n : {"ok", "crash", "hang"}) volmap_test::write_cube_case(root / "data", "G1", n, "cube");
   // A candidate that copies the input (the identity map is valid for an identity boundary map),
@@ -156,11 +160,7 @@ TEST_CASE("run_benchmark records crashing and hanging candidates, appends, resum
 }
 
 TEST_CASE("method arguments reach the candidate after in map out and labels keep runs apart") {
-  const auto check_tool = volmap_test::tool("volmap-map-check");
-  if (!fs::exists(check_tool)) {
-    MESSAGE("skipped: volmap-map-check is not built");
-    return;
-  }
+  REQUIRE_BUILT_TOOL(check_tool, "volmap-map-check");
   const auto root = fresh_dir("labels");
   volmap_test::write_cube_case(root / "data", "G1", "a", "cube");
   volmap_test::write_cube_case(root / "data", "G1", "b", "tet");
@@ -241,17 +241,15 @@ TEST_CASE("method arguments reach the candidate after in map out and labels keep
 }
 
 TEST_CASE("built-in volmap-map gets --method-args: an unknown flag is a recorded failure") {
-  const auto map_tool = volmap_test::tool("volmap-map");
-  if (!fs::exists(map_tool) || !fs::exists(volmap_test::tool("volmap-map-check"))) {
-    MESSAGE("skipped: volmap-map or volmap-map-check is not built");
-    return;
-  }
+  REQUIRE_BUILT_TOOL(map_tool, "volmap-map");
+  REQUIRE_BUILT_TOOL(check_tool, "volmap-map-check");
   const auto root = fresh_dir("builtin_args");
   volmap_test::write_cube_case(root / "data", "G1", "a", "cube");
   const auto cases = volmap::discover_cases((root / "data").string());
   volmap::RunOptions options;
   options.out_dir = (root / "out").string();
   options.tools_dir = map_tool.parent_path().string();
+  REQUIRE(check_tool.parent_path() == map_tool.parent_path());  // the runner finds both there
   options.timeout_s = 60;
   const auto good = volmap::resolve_method("map", options.tools_dir, "map-fixed",
                                            volmap::split_arguments("--threads 1 --no-refine --time-limit 10"));
@@ -359,7 +357,7 @@ TEST_CASE("mapping table counts and medians on hand-made records") {
   CHECK(*all.mean_mips3d == doctest::Approx(4.5));
 
   const std::string md = volmap::mapping_table_markdown({run});
-  CHECK(md.find("| cube | 5 | 4 | 1 | 3 | 4.5 % / 10.0 % | 3.00 / 20.00 | 4.000 | 2.000 |") != std::string::npos);
+  CHECK(md.find("| cube | 5 | 4 | 1 | 3 | 4.50 % / 10.00 % | 3.00 / 20.00 | 4.000 | 2.000 |") != std::string::npos);
   CHECK(md.find("| star | 1 | 0 | 0 | 0 | - | 7.00 / 7.00 | - | - |") != std::string::npos);
   CHECK(md.find("Not certified (2):") != std::string::npos);
   CHECK(md.find("- G1/e_cube (exit 1") != std::string::npos);

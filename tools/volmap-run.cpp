@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   app.add_option("--jobs,-j", jobs, "parallel cases")->check(CLI::Range(1, kMaxJobs));
   app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(CLI::NonNegativeNumber);
   app.add_option("--out", out, "results folder (results.jsonl + per-case logs)");
-  app.add_flag("--resume", resume, "skip cases already recorded in the results folder");
+  app.add_flag("--resume", resume, "skip cases already recorded in the results folder for this label");
   app.add_flag("--keep-outputs", keep, "keep every written mesh (default: only logs and JSON)");
   app.add_flag("--json", json, "print one JSON summary object at the end");
 

@@ -276,7 +276,7 @@ std::string markdown_cell(std::string text) {
 
 std::string percent(double fraction) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f %%", 100 * fraction);
+  std::snprintf(buf, sizeof buf, "%.2f %%", 100 * fraction);
   return buf;
 }
 std::string fixed(double v, int decimals) {
