@@ -6,7 +6,8 @@
 # Summarise with bench/summarise_map_g1.py <out.csv>.
 #
 # The issue-6 table is now produced by volmap-run (exact re-check, metrics, resume, one Markdown
-# table per label, TLC beside ours); the full 100 G1 pairs (20 meshes x 5 domains), ~1-2 h per label:
+# table per label, TLC beside ours). The full 100 G1 pairs (20 meshes x 5 domains); each label takes at
+# most ~100 x 35 s / 2 jobs = 30 min (bone+duck, 10 pairs, -j1, --time-limit 20: 15-46 s per label):
 #   B=build/bin; D=/work/shared/data/volmap; O=results/g1-table
 #   $B/volmap-run $D --groups G1 --method map --method-args="--threads 1 --time-limit 30" --timeout 120 -j2 --out $O
 #   $B/volmap-run $D --groups G1 --method map --label map-fixed --method-args="--threads 1 --time-limit 30 --no-refine" --timeout 120 -j2 --out $O
