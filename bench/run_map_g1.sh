@@ -5,27 +5,15 @@
 #        bench/run_map_g1.sh build/bin ../shared/data/volmap /tmp/g1_tlc.csv --threads 1 --time-limit 60 --method tlc
 # Summarise with bench/summarise_map_g1.py <out.csv>.
 #
-# Measured 2026-11-23 on the shared, heavily loaded 2-core machine (load ~12), --threads 1
-# --time-limit 20 --no-refine --no-quality (wall-clock budget; B1 refinement not implemented):
-#   domain pairs certified  time med/max (s)
-#   cube     20     12        2.81 / 20.08
-#   tet      20     12        4.22 / 20.10
-#   pyr      20     14        3.30 / 20.06
-#   octa     20     12        4.94 / 20.07
-#   star     20      6       20.02 / 20.10
-#   all     100     56        6.37 / 20.10   (growth 0 everywhere; 53 certified by the TLC stage)
-# Re-running the 22 failures with <= 13 bad tets at --time-limit 60 certified 9 more (65/100).
-# Cascade TLC share (volmap-map --tlc-share), MESHES="bone duck" subset, same flags, --time-limit 20:
-#   --tlc-share 0.5 (default): 8/10 certified; --tlc-share 0.8: 8/10 (same two failures, same counts).
-# s2-untangle cascade (local FFM with Newton on the bad region, global FFM with stall hand-over),
-# measured 2026-11-23 13:33-13:48 UTC, load ~2, same flags (--threads 1 --time-limit 20 --no-refine
-# --no-quality), before = main 23242ab, after = s2-untangle, run back to back:
-#   MESHES="bone duck bird" (15 pairs): before 8/15, median 18.12 s; after 8/15, median 1.17 s
-#     (bone octa 18.1 s by ffm-regular -> 1.2 s by ffm-local; bird still 15-61 bad in both).
-#   17 pairs that failed in the table above (homer cube, moai/sphinx/buste/bimba/bunny star, ramses x4,
-#   bunny octa, blade cube/tet, hand cube, camile_hand cube/octa, mouse cube): before 7/17, after 7/17
-#     (after gains sphinx star, 10.5 s by ffm-local; hand cube certified by the before binary once at
-#     10.7 s and failed on its re-run: TLC stopped at its time share is not reproducible under load).
+# The issue-6 table is now produced by volmap-run (exact re-check, metrics, resume, one Markdown
+# table per label, TLC beside ours). The full 100 G1 pairs (20 meshes x 5 domains); each label takes at
+# most ~100 x 35 s / 2 jobs = 30 min (bone+duck, 10 pairs, -j1, --time-limit 20: 15-46 s per label):
+#   B=build/bin; D=/work/shared/data/volmap; O=results/g1-table
+#   $B/volmap-run $D --groups G1 --method map --method-args="--threads 1 --time-limit 30" --timeout 120 -j2 --out $O
+#   $B/volmap-run $D --groups G1 --method map --label map-fixed --method-args="--threads 1 --time-limit 30 --no-refine" --timeout 120 -j2 --out $O
+#   $B/volmap-run $D --groups G1 --method tlc --method-args="--threads 1 --time-limit 30" --timeout 120 -j2 --out $O
+#   $B/volmap-run table $O        # prints the table and writes $O/table.md (add --resume to continue a run)
+# This script stays for quick CSV runs with any volmap-map flags.
 set -u
 bin=$1; data=$2; out=$3; shift 3
 tmp=$(mktemp -d)

@@ -1,7 +1,10 @@
 // volmap-run — run a mapping method over a VOLMAP dataset folder, and report on the results.
 //   volmap-run <dataset_dir> --method <tutte3d|map|tlc|executable> [--groups G1,G2] [--domains cube,tet]
 //              [--meshes bone,duck] [--jobs N] [--timeout s] [--out results_dir] [--resume] [--keep-outputs] [--json]
+//              [--method-args "--threads 1 --no-refine"] [--label map-fixed]
 //   volmap-run report <results_dir> [--compare other_results_dir] [-o report.html] [--csv summary.csv]
+//   volmap-run table <results_dir> [--compare other_results_dir] [-o table.md]
+//       issue 6's per-domain Markdown table for every label in the folder(s), also printed
 //   volmap-run list <dataset_dir> [--groups ..] [--domains ..]          (case ids, one per line)
 //   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
 //       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
@@ -13,6 +16,7 @@
 #include <volmap/benchmark_runner.hpp>
 #include <volmap/dataset.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -57,6 +61,26 @@ std::string tools_dir() {
   return ec ? std::string(".") : self.parent_path().string();
 }
 
+// One MethodRun per label found in the results folder(s); with a second folder, labels get the
+// folder's name appended so both sides stay apart.
+std::vector<volmap::MethodRun> load_runs(const std::string& results_dir, const std::string& compare_dir) {
+  std::vector<volmap::MethodRun> runs;
+  for (const auto& dir : {results_dir, compare_dir}) {
+    if (dir.empty()) continue;
+    const auto file = fs::path(dir) / "results.jsonl";
+    if (!fs::is_regular_file(file)) throw volmap::Error(volmap::ErrorKind::Io, file.string(), 0, "no results file");
+    std::vector<volmap::MethodRun> found;
+    for (auto& r : volmap::read_results(file.string())) {
+      const std::string label = compare_dir.empty() ? r.label : r.label + " (" + fs::path(dir).filename().string() + ")";
+      auto it = std::find_if(found.begin(), found.end(), [&](const auto& m) { return m.label == label; });
+      if (it == found.end()) it = found.insert(found.end(), volmap::MethodRun{label, {}});
+      it->records.push_back(std::move(r));
+    }
+    runs.insert(runs.end(), found.begin(), found.end());
+  }
+  return runs;
+}
+
 std::string format_duration(double s) {
   if (!(s >= 0) || s > 1e7) return "?";
   char buf[32];
@@ -70,19 +94,26 @@ std::string format_duration(double s) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Run a volume-mapping method over a VOLMAP dataset folder; `report` renders results.", "volmap-run"};
-  std::string dataset, method, groups, domains, meshes, out = "volmap-results";
+  std::string dataset, method, groups, domains, meshes, out = "volmap-results", method_args, label;
   int jobs = 1;
   double timeout = 0;
   bool resume = false, keep = false, json = false;
   app.add_option("dataset_dir", dataset, "VOLMAP layout root (G<k>/<name>.mesh, G<k>_<dom>/<name>_<dom>.txt)");
   app.add_option("--method", method, "tutte3d, map, tlc, or a candidate executable (<exe> in.mesh map.txt out.mesh)");
+  app.add_option("--method-args", method_args,
+                 "extra candidate arguments, split on spaces and passed after in, map, out, e.g. "
+                 "--method-args=\"--threads 1 --time-limit 30 --no-refine\" (built-ins also get --json, "
+                 "--refined-input and, with --timeout and no --time-limit here, --time-limit 0.8*timeout)");
+  app.add_option("--label", label,
+                 "name of this configuration in the results (default: the method name), so the same method "
+                 "with other --method-args can share --out, e.g. --label map-fixed");
   app.add_option("--groups", groups, "comma-separated groups, e.g. G1,G2 (default: all)");
   app.add_option("--domains", domains, "comma-separated domains among cube,tet,pyr,octa,star,sphere,pc (default: all)");
   app.add_option("--meshes", meshes, "comma-separated mesh names, e.g. bone,duck (default: all)");
   app.add_option("--jobs,-j", jobs, "parallel cases")->check(CLI::Range(1, kMaxJobs));
   app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(CLI::NonNegativeNumber);
   app.add_option("--out", out, "results folder (results.jsonl + per-case logs)");
-  app.add_flag("--resume", resume, "skip cases already recorded in the results folder");
+  app.add_flag("--resume", resume, "skip cases already recorded in the results folder for this label");
   app.add_flag("--keep-outputs", keep, "keep every written mesh (default: only logs and JSON)");
   app.add_flag("--json", json, "print one JSON summary object at the end");
 
@@ -92,6 +123,11 @@ int main(int argc, char** argv) {
   report->add_option("--compare", compare_dir, "a second results folder shown side by side");
   report->add_option("-o,--output", html_path, "HTML report path (default <results_dir>/report.html)");
   report->add_option("--csv", csv_path, "CSV summary path (default <results_dir>/summary.csv)");
+  auto* table = app.add_subcommand("table", "issue 6's per-domain table (Markdown) for every label in a results folder");
+  std::string table_dir, table_compare, table_path;
+  table->add_option("results_dir", table_dir, "a results folder of volmap-run")->required();
+  table->add_option("--compare", table_compare, "a second results folder, its labels shown beside");
+  table->add_option("-o,--output", table_path, "Markdown path (default <results_dir>/table.md); also printed");
   auto* list = app.add_subcommand("list", "print the case ids of a dataset folder, one per line");
   std::string list_dataset;
   list->add_option("dataset_dir", list_dataset, "VOLMAP layout root")->required();
@@ -110,22 +146,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    if (table->parsed()) {
+      const auto runs = load_runs(table_dir, table_compare);
+      if (table_path.empty()) table_path = (fs::path(table_dir) / "table.md").string();
+      const std::string md = volmap::mapping_table_markdown(runs);
+      volmap::write_text_atomically(table_path, md);
+      std::cout << md << "\ntable: " << fs::absolute(table_path).string() << "\n";
+      return volmap_tools::kExitOk;
+    }
     if (report->parsed()) {
-      std::vector<volmap::MethodRun> runs;
-      for (const auto& dir : {results_dir, compare_dir}) {
-        if (dir.empty()) continue;
-        const auto file = fs::path(dir) / "results.jsonl";
-        if (!fs::is_regular_file(file)) throw volmap::Error(volmap::ErrorKind::Io, file.string(), 0, "no results file");
-        // One run per method found in the folder.
-        std::vector<volmap::MethodRun> found;
-        for (auto& r : volmap::read_results(file.string())) {
-          const std::string label = compare_dir.empty() ? r.method : r.method + " (" + fs::path(dir).filename().string() + ")";
-          auto it = std::find_if(found.begin(), found.end(), [&](const auto& m) { return m.label == label; });
-          if (it == found.end()) it = found.insert(found.end(), volmap::MethodRun{label, {}});
-          it->records.push_back(std::move(r));
-        }
-        runs.insert(runs.end(), found.begin(), found.end());
-      }
+      const auto runs = load_runs(results_dir, compare_dir);
       if (html_path.empty()) html_path = (fs::path(results_dir) / "report.html").string();
       if (csv_path.empty()) csv_path = (fs::path(results_dir) / "summary.csv").string();
       volmap::write_text_atomically(html_path, volmap::render_report_html(runs, "volmap benchmark report"));
@@ -168,7 +198,7 @@ int main(int argc, char** argv) {
     options.timeout_s = timeout;
     options.resume = resume;
     options.keep_outputs = keep;
-    const auto spec = volmap::resolve_method(method, options.tools_dir);
+    const auto spec = volmap::resolve_method(method, options.tools_dir, label, volmap::split_arguments(method_args));
 
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
@@ -194,20 +224,20 @@ int main(int argc, char** argv) {
       }
     };
     const auto records = volmap::run_benchmark(cases, spec, options, progress, g_child_pids);
-    // Totals over everything recorded for this method (including resumed cases).
+    // Totals over everything recorded for this label (including resumed cases).
     std::size_t total = 0, certified = 0;
     for (const auto& r : volmap::read_results((fs::path(out) / "results.jsonl").string()))
-      if (r.method == spec.name) {
+      if (r.label == spec.label) {
         ++total;
         certified += r.certified;
       }
     if (json) {
-      nlohmann::json j{{"ok", true},       {"method", spec.name},        {"cases", cases.size()},
+      nlohmann::json j{{"ok", true},       {"method", spec.name},        {"label", spec.label},   {"cases", cases.size()},
                        {"ran", records.size()}, {"recorded", total},    {"certified", certified},
                        {"results", (fs::path(out) / "results.jsonl").string()}};
       std::cout << j.dump() << "\n";
     } else {
-      std::cout << spec.name << ": " << certified << "/" << total << " certified; results in "
+      std::cout << spec.label << ": " << certified << "/" << total << " certified; results in "
                 << (fs::path(out) / "results.jsonl").string() << "\n";
     }
     return volmap_tools::kExitOk;

@@ -1,12 +1,16 @@
 // HTML + SVG benchmark report. Plots are drawn here as plain SVG (no scripts, no external assets):
 // success rate per group and domain, per-case distributions of MIPS3D and conformal distortion
 // sorted by value (the style of Fig. 7 of the VOLMAP paper), inverted tets, time and growth.
+// The Markdown mapping table is issue 6's per-domain table (certified at fixed connectivity / with
+// refinement, growth, time, distortion means), meant to be pasted in notes as it is.
 #include <volmap/benchmark_report.hpp>
+#include <volmap/dataset.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace volmap {
@@ -193,6 +197,192 @@ std::vector<SummaryRow> summarize(const MethodRun& run) {
     rows.push_back(row);
   }
   return rows;
+}
+
+bool within_growth_budget(const CaseRecord& r) {
+  // Integer test: a float ratio 105/100 - 1 is 0.05000000000000004, just over the budget.
+  if (r.tets_in > 0 && r.tets_out > 0) return 100 * (r.tets_out - r.tets_in) <= 5 * r.tets_in;
+  return r.growth - 1.0 <= 0.05 + 1e-12;
+}
+
+namespace {
+
+// Added tets as a fraction of the input's, (out - in) / in.
+double added_fraction(const CaseRecord& r) {
+  if (r.tets_in > 0 && r.tets_out > 0) return double(r.tets_out - r.tets_in) / double(r.tets_in);
+  return r.growth - 1.0;
+}
+
+// VOLMAP domains first in their canonical order, then any other name alphabetically.
+bool domain_before(const std::string& a, const std::string& b) {
+  const auto& order = volmap_domain_suffixes();
+  const auto ra = std::find(order.begin(), order.end(), a) - order.begin();
+  const auto rb = std::find(order.begin(), order.end(), b) - order.begin();
+  return ra != rb ? ra < rb : a < b;
+}
+// "G2" before "G10".
+bool group_before(const std::string& a, const std::string& b) {
+  return a.size() != b.size() ? a.size() < b.size() : a < b;
+}
+
+std::optional<double> mean_of(const std::vector<double>& v) {
+  if (v.empty()) return std::nullopt;
+  double sum = 0;
+  for (double x : v) sum += x;
+  return sum / double(v.size());
+}
+
+MappingTableRow table_row(const std::string& label, const std::string& group, const std::string& domain,
+                          const std::vector<const CaseRecord*>& records) {
+  MappingTableRow row;
+  row.label = label;
+  row.group = group;
+  row.domain = domain;
+  std::vector<double> growths, times, mips, conformal;
+  for (const auto* r : records) {
+    ++row.pairs;
+    times.push_back(r->time_s);
+    if (!r->certified) continue;
+    ++row.certified;
+    if (!r->refined) ++row.certified_fixed;
+    if (within_growth_budget(*r)) ++row.certified_small_growth;
+    growths.push_back(added_fraction(*r));
+    if (r->mips3d) mips.push_back(*r->mips3d);
+    if (r->conformal) conformal.push_back(*r->conformal);
+  }
+  row.growth_median = median(growths);
+  row.growth_max = growths.empty() ? 0 : *std::max_element(growths.begin(), growths.end());
+  row.time_median_s = median(times);
+  row.time_max_s = times.empty() ? 0 : *std::max_element(times.begin(), times.end());
+  row.mean_mips3d = mean_of(mips);
+  row.mean_conformal = mean_of(conformal);
+  return row;
+}
+
+std::vector<std::string> sorted_groups(const std::vector<const MethodRun*>& runs) {
+  std::set<std::string> set;
+  for (const auto* run : runs)
+    for (const auto& r : run->records) set.insert(r.group);
+  std::vector<std::string> groups(set.begin(), set.end());
+  std::sort(groups.begin(), groups.end(), group_before);
+  return groups;
+}
+
+std::string markdown_cell(std::string text) {
+  std::replace(text.begin(), text.end(), '|', '/');
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+std::string percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f %%", 100 * fraction);
+  return buf;
+}
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<MappingTableRow> mapping_table(const MethodRun& run) {
+  std::vector<MappingTableRow> rows;
+  for (const auto& group : sorted_groups({&run})) {
+    std::map<std::string, std::vector<const CaseRecord*>> by_domain;
+    std::vector<const CaseRecord*> all;
+    for (const auto& r : run.records)
+      if (r.group == group) {
+        by_domain[r.domain].push_back(&r);
+        all.push_back(&r);
+      }
+    std::vector<std::string> domains;
+    for (const auto& entry : by_domain) domains.push_back(entry.first);
+    std::sort(domains.begin(), domains.end(), domain_before);
+    for (const auto& d : domains) rows.push_back(table_row(run.label, group, d, by_domain[d]));
+    rows.push_back(table_row(run.label, group, "all", all));
+  }
+  return rows;
+}
+
+std::string mapping_table_markdown(const std::vector<MethodRun>& runs) {
+  std::ostringstream md;
+  md << "Certified = the exact check of volmap-map-check passed on the files the method wrote. "
+        "Growth = (output tets - input tets) / input tets, over certified pairs; fixed connectivity = "
+        "certified without refinement; growth <= 5 % counts those too. Time = the method's wall-clock "
+        "seconds per pair, over all pairs. MIPS3D and conformal = VOLMAP's volume-weighted means, "
+        "averaged over certified pairs.\n";
+  for (const auto& run : runs) {
+    std::set<std::string> methods, arguments;
+    for (const auto& r : run.records) {
+      methods.insert(r.method);
+      arguments.insert(r.method_args);
+    }
+    std::string method_list, argument_list;
+    for (const auto& m : methods) method_list += (method_list.empty() ? "`" : ", `") + m + "`";
+    for (const auto& a : arguments) argument_list += (argument_list.empty() ? "`" : ", `") + (a.empty() ? "(none)" : a) + "`";
+    const auto rows = mapping_table(run);
+    for (const auto& group : sorted_groups({&run})) {
+      md << "\n### " << markdown_cell(run.label) << " - " << group << "\n\nmethod " << method_list << ", arguments "
+         << argument_list << "\n\n"
+         << "| domain | pairs | certified | fixed connectivity | growth <= 5 % | growth median / max | "
+            "time median / max (s) | MIPS3D | conformal |\n"
+         << "|:--|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+      for (const auto& row : rows) {
+        if (row.group != group) continue;
+        const bool total = row.domain == "all";
+        const auto b = [&](const std::string& text) { return total ? "**" + text + "**" : text; };
+        md << "| " << b(row.domain) << " | " << row.pairs << " | " << b(std::to_string(row.certified)) << " | "
+           << row.certified_fixed << " | " << row.certified_small_growth << " | "
+           << (row.certified ? percent(row.growth_median) + " / " + percent(row.growth_max) : "-") << " | "
+           << fixed(row.time_median_s, 2) << " / " << fixed(row.time_max_s, 2) << " | "
+           << (row.mean_mips3d ? fixed(*row.mean_mips3d, 3) : "-") << " | "
+           << (row.mean_conformal ? fixed(*row.mean_conformal, 3) : "-") << " |\n";
+      }
+      std::vector<const CaseRecord*> failed;
+      for (const auto& r : run.records)
+        if (r.group == group && !r.certified) failed.push_back(&r);
+      md << "\nNot certified (" << failed.size() << ")" << (failed.empty() ? "." : ":") << "\n";
+      for (const auto* r : failed) {
+        md << "- " << r->case_id << " (" << (r->timed_out ? std::string("timed out") : "exit " + std::to_string(r->exit_code));
+        if (r->negative >= 0 && r->zero >= 0) md << ", " << r->negative + r->zero << " non-positive tets";
+        if (!r->failure.empty()) md << ", " << markdown_cell(r->failure.substr(0, 120));
+        md << ")\n";
+      }
+    }
+  }
+  // Every run's certified count side by side, per group and domain.
+  if (runs.size() > 1) {
+    md << "\n### certified pairs side by side\n\n| group | domain |";
+    for (const auto& run : runs) md << " " << markdown_cell(run.label) << " |";
+    md << "\n|:--|:--|";
+    for (std::size_t k = 0; k < runs.size(); ++k) md << "--:|";
+    md << "\n";
+    std::vector<std::vector<MappingTableRow>> tables;
+    for (const auto& run : runs) tables.push_back(mapping_table(run));
+    std::vector<const MethodRun*> all_runs;
+    for (const auto& run : runs) all_runs.push_back(&run);
+    for (const auto& group : sorted_groups(all_runs)) {
+      std::set<std::string> seen;
+      std::vector<std::string> domains;
+      for (const auto& t : tables)
+        for (const auto& row : t)
+          if (row.group == group && row.domain != "all" && seen.insert(row.domain).second) domains.push_back(row.domain);
+      std::sort(domains.begin(), domains.end(), domain_before);
+      domains.push_back("all");
+      for (const auto& d : domains) {
+        md << "| " << group << " | " << d << " |";
+        for (const auto& t : tables) {
+          const auto it = std::find_if(t.begin(), t.end(), [&](const auto& row) { return row.group == group && row.domain == d; });
+          if (it == t.end()) md << " - |";
+          else md << " " << it->certified << "/" << it->pairs << " |";
+        }
+        md << "\n";
+      }
+    }
+  }
+  return md.str();
 }
 
 std::string summary_csv(const std::vector<MethodRun>& runs) {

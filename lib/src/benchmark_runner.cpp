@@ -84,6 +84,9 @@ std::optional<double> energy_mean(const json& metrics, const char* energy) {
   return number_at(metrics, {"energies", energy, "mean"});
 }
 
+// The key of a run in results (a MethodSpec built by hand may leave the label empty).
+const std::string& run_label(const MethodSpec& method) { return method.label.empty() ? method.name : method.label; }
+
 void append_line_atomically(const std::string& path, const std::string& line) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   if (fd < 0) throw_io(path, std::string("cannot append results: ") + std::strerror(errno));
@@ -102,7 +105,8 @@ std::string record_to_json_line(const CaseRecord& r) {
          {"exit_code", r.exit_code}, {"signal", r.term_signal}, {"timed_out", r.timed_out}, {"failure", r.failure},
          {"time_s", r.time_s}, {"peak_rss_mb", r.peak_rss_mb}, {"certified", r.certified},
          {"tets_in", r.tets_in}, {"tets_out", r.tets_out}, {"positive", r.positive}, {"zero", r.zero},
-         {"negative", r.negative}, {"growth", r.growth}};
+         {"negative", r.negative}, {"growth", r.growth}, {"label", r.label}, {"method_args", r.method_args},
+         {"refined", r.refined}, {"certified_by", r.certified_by}};
   put_optional(j, "conformal", r.conformal);
   put_optional(j, "dirichlet", r.dirichlet);
   put_optional(j, "symmetric_dirichlet", r.symmetric_dirichlet);
@@ -139,6 +143,12 @@ std::optional<CaseRecord> record_from_json_line(const std::string& line) {
     r.zero = j.value("zero", -1LL);
     r.negative = j.value("negative", -1LL);
     r.growth = j.value("growth", 1.0);
+    // Fields added later: lines written before them get the defaults they would have had.
+    r.label = j.value("label", r.method);
+    if (r.label.empty()) r.label = r.method;
+    r.method_args = j.value("method_args", "");
+    r.refined = j.value("refined", r.tets_in > 0 && r.tets_out > 0 && r.tets_in != r.tets_out);
+    r.certified_by = j.value("certified_by", "");
     r.conformal = get_optional(j, "conformal");
     r.dirichlet = get_optional(j, "dirichlet");
     r.symmetric_dirichlet = get_optional(j, "symmetric_dirichlet");
@@ -159,26 +169,49 @@ std::vector<CaseRecord> read_results(const std::string& results_jsonl) {
   return records;
 }
 
-MethodSpec resolve_method(const std::string& method, const std::string& tools_dir) {
+// The argv prefix of a method name (see resolve_method).
+static MethodSpec resolve_method_command(const std::string& method, const std::string& tools_dir) {
   MethodSpec spec;
   const fs::path dir(tools_dir);
+  spec.name = method;
+  spec.builtin = true;
   if (method == "tutte3d") {
-    spec = {"tutte3d", {(dir / "volmap-tutte3d").string()}, true};
+    spec.command = {(dir / "volmap-tutte3d").string()};
   } else if (method == "map") {
-    spec = {"map", {(dir / "volmap-map").string()}, true};
+    spec.command = {(dir / "volmap-map").string()};
   } else if (method == "tlc") {
-    spec = {"tlc", {(dir / "volmap-map").string(), "--method", "tlc"}, true};
+    spec.command = {(dir / "volmap-map").string(), "--method", "tlc"};
   } else {
     std::error_code ec;
     if (!fs::is_regular_file(method, ec) || ::access(method.c_str(), X_OK) != 0)
       throw Error(ErrorKind::BadInput, "", 0,
                   "method '" + method + "' is neither tutte3d, map, tlc nor an executable file");
-    spec = {fs::path(method).filename().string(), {fs::absolute(method).string()}, false};
+    spec.name = fs::path(method).filename().string();
+    spec.command = {fs::absolute(method).string()};
+    spec.builtin = false;
     return spec;
   }
   std::error_code ec;
   if (!fs::is_regular_file(spec.command[0], ec))
     throw Error(ErrorKind::BadInput, "", 0, "built-in method '" + method + "' needs " + spec.command[0] + " (not built?)");
+  return spec;
+}
+
+std::vector<std::string> split_arguments(const std::string& text) {
+  std::vector<std::string> args;
+  std::istringstream in(text);
+  for (std::string a; in >> a;) args.push_back(a);
+  return args;
+}
+
+MethodSpec resolve_method(const std::string& method, const std::string& tools_dir, const std::string& label,
+                          const std::vector<std::string>& args) {
+  if (!label.empty() && (label == "." || label == ".." ||
+                         label.find_first_of("/ \t\n\r") != std::string::npos))
+    throw Error(ErrorKind::BadInput, "", 0, "label '" + label + "' must be a plain folder name (no '/' or spaces)");
+  MethodSpec spec = resolve_method_command(method, tools_dir);
+  spec.label = label.empty() ? spec.name : label;
+  spec.args = args;
   return spec;
 }
 
@@ -190,7 +223,9 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
   r.name = c.name;
   r.domain = c.domain;
   r.method = method.name;
-  const fs::path work = fs::path(options.out_dir) / "cases" / method.name / c.group / (c.name + "_" + c.domain);
+  r.label = run_label(method);
+  for (const auto& a : method.args) r.method_args += (r.method_args.empty() ? "" : " ") + a;
+  const fs::path work = fs::path(options.out_dir) / "cases" / r.label / c.group / (c.name + "_" + c.domain);
   fs::create_directories(work);
   const fs::path output = work / "output.mesh";
   const fs::path refined = work / "input.mesh";
@@ -199,10 +234,18 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
 
   std::vector<std::string> argv = method.command;
   argv.insert(argv.end(), {c.mesh_path, c.map_path, output.string()});
+  argv.insert(argv.end(), method.args.begin(), method.args.end());
+  const auto given = [&](const char* flag) {
+    return std::find(method.args.begin(), method.args.end(), flag) != method.args.end();
+  };
+  // Built-ins print one JSON object (read below for "refined" and "certified_by").
+  if (method.builtin && !given("--json")) argv.push_back("--json");
   if (method.builtin && method.name != "tutte3d") {
     argv.insert(argv.end(), {"--refined-input", refined.string()});
-    // Built-in mappers stop by themselves before the runner's deadline, keeping their best map.
-    if (options.timeout_s > 0) argv.insert(argv.end(), {"--time-limit", std::to_string(0.8 * options.timeout_s)});
+    // Built-in mappers stop by themselves before the runner's deadline, keeping their best map
+    // (unless the method arguments set their own --time-limit).
+    if (options.timeout_s > 0 && !given("--time-limit"))
+      argv.insert(argv.end(), {"--time-limit", std::to_string(0.8 * options.timeout_s)});
   }
   const ProcessResult run = run_process(argv, options.timeout_s, (work / "candidate.out").string(),
                                        (work / "candidate.err").string(), child_pid,
@@ -229,7 +272,14 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
 
   // The exact check and the metrics run on what the candidate wrote (against its refined source
   // when it wrote one), each in its own process.
-  const fs::path source = fs::is_regular_file(refined, ec) ? refined : fs::path(c.mesh_path);
+  const bool wrote_refined = fs::is_regular_file(refined, ec);
+  const fs::path source = wrote_refined ? refined : fs::path(c.mesh_path);
+  // What the candidate said about itself (built-ins with --json; anything else may print nothing).
+  bool said_refined = false;
+  if (const auto said = parse_tool_json(work / "candidate.out"); said && said->is_object()) {
+    if (auto it = said->find("refined"); it != said->end() && it->is_boolean()) said_refined = it->get<bool>();
+    if (auto it = said->find("certified_by"); it != said->end() && it->is_string()) r.certified_by = it->get<std::string>();
+  }
   const fs::path tools(options.tools_dir);
   const double checker_timeout = 600;
   const ProcessResult check = run_process({(tools / "volmap-map-check").string(), source.string(), output.string(),
@@ -274,6 +324,7 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
     r.tets_in = -1;
   }
   if (r.tets_in > 0 && r.tets_out > 0) r.growth = static_cast<double>(r.tets_out) / static_cast<double>(r.tets_in);
+  r.refined = said_refined || wrote_refined || (r.tets_in > 0 && r.tets_out > 0 && r.tets_out != r.tets_in);
 
   if (!options.keep_outputs) {
     fs::remove(output, ec);
@@ -297,13 +348,14 @@ std::vector<CaseRecord> run_benchmark(const std::vector<BenchmarkCase>& cases, c
       if (in.get() != '\n') append_line_atomically(results, "");
     }
   }
+  const std::string label = run_label(method);
   std::set<std::string> done;
   for (const auto& r : read_results(results))
-    if (r.method == method.name) done.insert(r.case_id);
+    if (r.label == label) done.insert(r.case_id);
   if (!done.empty() && !options.resume)
     throw Error(ErrorKind::BadInput, results, 0,
-                std::to_string(done.size()) + " cases of method '" + method.name +
-                    "' are already recorded: pass --resume to continue, or use another --out");
+                std::to_string(done.size()) + " cases of label '" + label +
+                    "' are already recorded: pass --resume to continue, use another --label or another --out");
 
   std::vector<const BenchmarkCase*> todo;
   for (const auto& c : cases)

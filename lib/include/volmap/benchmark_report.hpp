@@ -1,7 +1,9 @@
 // volmap/benchmark_report.hpp — the self-contained HTML report (inline SVG plots, no network, no
-// external assets) and the CSV summary of one or more benchmark runs (see benchmark_runner.hpp).
+// external assets), the CSV summary of one or more benchmark runs (see benchmark_runner.hpp), and
+// the per-domain mapping table of issue 6 in Markdown.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,7 +12,7 @@
 namespace volmap {
 
 struct MethodRun {
-  std::string label;               // shown in legends: the method name (+ folder when compared)
+  std::string label;               // shown in legends: the run's label (+ folder when compared)
   std::vector<CaseRecord> records;
 };
 
@@ -23,6 +25,27 @@ struct SummaryRow {
   double mean_mips3d_all = 0, mean_conformal_all = 0;  // over every case with metrics
 };
 std::vector<SummaryRow> summarize(const MethodRun& run);
+
+// One row of the mapping table of one run and group: figures over the pairs of one domain, or of
+// every domain when domain == "all". Growth is the fraction of added tets, (out - in) / in.
+struct MappingTableRow {
+  std::string label, group, domain;
+  std::size_t pairs = 0;
+  std::size_t certified = 0;               // exact check passed (refinement allowed)
+  std::size_t certified_fixed = 0;         // ... without refinement (same connectivity as the input)
+  std::size_t certified_small_growth = 0;  // ... with (out - in) <= 5 % of in (fixed connectivity included)
+  double growth_median = 0, growth_max = 0;  // over certified pairs (0 when none)
+  double time_median_s = 0, time_max_s = 0;  // over every pair
+  std::optional<double> mean_mips3d, mean_conformal;  // over certified pairs with metrics
+};
+// Rows per group, domains in VOLMAP order (others after, by name), then one "all" row per group.
+std::vector<MappingTableRow> mapping_table(const MethodRun& run);
+// `growth` = (out - in) / in <= 5 %, decided on the integer tet counts (ratio when they are unknown).
+bool within_growth_budget(const CaseRecord& record);
+
+// The Markdown table (one section per run and group, the method arguments, the uncertified pairs,
+// then certified counts of every run side by side per domain).
+std::string mapping_table_markdown(const std::vector<MethodRun>& runs);
 
 std::string summary_csv(const std::vector<MethodRun>& runs);
 std::string render_report_html(const std::vector<MethodRun>& runs, const std::string& title);

@@ -7,7 +7,12 @@
 // (volmap-metrics) on what the candidate wrote, as separate processes, so no candidate or checker
 // failure can stop a run. Each case yields one CaseRecord, appended as one JSON line to
 // <out>/results.jsonl with a single O_APPEND write: killing the runner loses at most the cases
-// in flight, and `resume` skips every case already recorded for the method.
+// in flight, and `resume` skips every case already recorded for the run's label.
+//
+// Method arguments and labels: extra candidate arguments (MethodSpec::args, e.g. `--threads 1
+// --no-refine`) are passed after in, map, out. A label (default: the method name) names one
+// configuration, so the same method with other arguments can share a results folder: resume,
+// the per-case folders (cases/<label>/...) and the reports are keyed by label.
 #pragma once
 
 #include <atomic>
@@ -22,6 +27,8 @@ namespace volmap {
 
 struct CaseRecord {
   std::string case_id, group, name, domain, method;
+  std::string label;           // the run's label (= method when the line predates labels)
+  std::string method_args;     // the extra candidate arguments, space-separated ("" = none)
   int exit_code = -1;          // candidate's exit code (-1 when killed or not started)
   int term_signal = 0;         // candidate killed by this signal
   bool timed_out = false;
@@ -30,6 +37,10 @@ struct CaseRecord {
   bool certified = false;      // exact check passed on the written files
   long long tets_in = -1, tets_out = -1, positive = -1, zero = -1, negative = -1;
   double growth = 1.0;         // output tets / original input tets
+  // The candidate changed the connectivity: it said so in its --json output ("refined": true), or
+  // it wrote a refined source, or tets_out != tets_in. Old lines without the field: the last test.
+  bool refined = false;
+  std::string certified_by;    // the stage that certified, from a built-in's --json output ("" = unknown)
   // VOLMAP metrics (output-volume-weighted means over valid tets); empty when unavailable.
   std::optional<double> conformal, dirichlet, symmetric_dirichlet, arap, mips3d;
 };
@@ -42,18 +53,25 @@ std::vector<CaseRecord> read_results(const std::string& results_jsonl);
 
 struct MethodSpec {
   std::string name;                  // "tutte3d", "map", "tlc" or the executable's file name
-  std::vector<std::string> command;  // argv prefix; the runner appends in, map, out
-  bool builtin = false;              // built-ins understand --refined-input
+  std::vector<std::string> command;  // argv prefix; the runner appends in, map, out, then args
+  bool builtin = false;              // built-ins understand --refined-input and --json
+  std::string label;                 // results key and folder name (default: name); no '/' or spaces
+  std::vector<std::string> args;     // extra candidate arguments, after in, map, out
 };
 // "tutte3d", "map", "tlc" resolve to the tools in tools_dir; anything else must be an executable.
-MethodSpec resolve_method(const std::string& method, const std::string& tools_dir);
+// `label` empty = the method name. Throws Error(BadInput) for an unusable label.
+MethodSpec resolve_method(const std::string& method, const std::string& tools_dir,
+                          const std::string& label = "", const std::vector<std::string>& args = {});
+
+// "--threads 1  --no-refine" -> {"--threads", "1", "--no-refine"} (split on whitespace; no quoting).
+std::vector<std::string> split_arguments(const std::string& text);
 
 struct RunOptions {
   std::string out_dir;        // results.jsonl + cases/<group>/<name>_<dom>/...
   std::string tools_dir;      // where volmap-map-check and volmap-metrics live
   int jobs = 1;
   double timeout_s = 0;       // per candidate run; 0 = none
-  bool resume = false;        // skip cases already in results.jsonl for this method
+  bool resume = false;        // skip cases already in results.jsonl for this label
   bool keep_outputs = false;  // keep the written meshes (default: only logs and JSON stay)
 };
 
@@ -64,7 +82,7 @@ struct RunProgress {
 
 // Runs every case not yet recorded. `on_progress` is called (serialised) after each case.
 // `child_pids` (size >= jobs, optional) receives the running children's pids for signal handlers.
-// Throws Error(BadInput) when results exist for this method and resume is off.
+// Throws Error(BadInput) when results exist for this label and resume is off.
 std::vector<CaseRecord> run_benchmark(const std::vector<BenchmarkCase>& cases, const MethodSpec& method,
                                       const RunOptions& options,
                                       const std::function<void(const RunProgress&)>& on_progress = {},
