@@ -177,17 +177,18 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // Early B1: as soon as a cascade stage leaves few non-positive tets, try the cone repair (it is
   // cheap — milliseconds on G1 — and leaves a cluster untouched when it fails), instead of spending
   // the cascade's whole time share on the last few tets (bone cube/star: 9.8 s → under 2 s).
+  std::size_t early_b1_stalled_at = std::size_t(-1);  // bad count of the last attempt that patched nothing
   auto try_b1 = [&](const char* after) {
-    if (bad == 0 || !b1_rounds || bad > options.early_repair_max_bad) return;
+    if (bad == 0 || !b1_rounds || bad > options.early_repair_max_bad || bad >= early_b1_stalled_at) return;
     t0 = elapsed();
     ConeRepairOptions co;
     const long long used = (long long)r.source.num_tets() - (long long)nt;
     co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget - used));
     const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
-    if (cr.patches == 0) return;  // nothing changed: no stage to report
     r.cone_patches += cr.patches;
-    r.refined = true;
+    if (cr.patches > 0) r.refined = true;
     bad = stage_done(std::string("cone-repair-after-") + after, t0);
+    if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at = bad;  // retry only after progress elsewhere
     if (bad == 0) r.certified_by = "cone-repair";
   };
   if (bad > 0 && !out_of_time()) {
@@ -245,7 +246,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // within max_growth · input tets.
   if (bad > 0 && b1_rounds) {
     phase_limit = options.time_limit_seconds;
-    for (int round = 0; round < 4 && bad > 0 && !out_of_time(); ++round) {
+    bool global_tried = false;
+    for (int round = 0; round < 6 && bad > 0 && !out_of_time(); ++round) {
       t0 = elapsed();
       ConeRepairOptions co;
       const long long used = (long long)r.source.num_tets() - (long long)nt;
@@ -258,15 +260,26 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
       if (bad == 0) r.certified_by = "cone-repair";
       link_kernel();
       if (bad == 0 || out_of_time()) break;
-      t0 = elapsed();
-      FfmOptions fo;
-      const double rem = remaining();
-      fo.time_limit_seconds = rem > 0 ? (round == 3 ? rem : std::max(1.0, 0.4 * rem)) : 0;
-      ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
-      bad = stage_done("ffm-after-repair", t0);
-      if (bad == 0) r.certified_by = "ffm-after-repair";
-      link_kernel();
-      if (cr.patches == 0 && bad >= bad_before) break;  // nothing moves any more
+      // The repaired mesh is untangled locally first (the rest of the map is valid and stays
+      // frozen); a global FFM (it may wander far from the nearly valid map) only once, when the
+      // local solve and the repair both stall.
+      const std::size_t bad_local = bad;
+      local_ffm(0.3);
+      if (bad == 0 || out_of_time()) break;
+      if (cr.patches == 0 && bad >= bad_before && bad >= bad_local) {
+        if (global_tried) break;  // nothing moves any more
+        global_tried = true;
+        t0 = elapsed();
+        FfmOptions fo;
+        fo.reference = ReferenceShape::RestShape;
+        fo.stall_outer_iterations = 40;
+        const double rem = remaining();
+        fo.time_limit_seconds = rem > 0 ? 0.5 * rem : 0;
+        ffm_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, fo);
+        bad = stage_done("ffm-after-repair", t0);
+        if (bad == 0) r.certified_by = "ffm-after-repair";
+        link_kernel();
+      }
     }
   }
 
