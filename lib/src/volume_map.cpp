@@ -286,8 +286,10 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // Quality pass (never breaks validity: kept only when the exact check passes).
   if (bad == 0 && options.quality_pass && !out_of_time()) {
     t0 = elapsed();
+    double quality_seconds = std::max(options.quality_min_seconds, options.quality_time_ratio * t0);
+    if (remaining() > 0) quality_seconds = std::min(quality_seconds, remaining());
     ffm_quality_pass(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, ReferenceShape::RestShape,
-                     options.quality_iterations, remaining());
+                     options.quality_iterations, quality_seconds);
     bad = stage_done("quality", t0);
   }
 
