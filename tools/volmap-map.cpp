@@ -30,7 +30,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
   std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
-  double max_growth = 0.05, time_limit = 0;
+  double max_growth = 0.05, time_limit = 60;
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
@@ -40,12 +40,12 @@ int main(int argc, char** argv) {
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
   app.add_option("--method", method, "ffm (default: Tutte → FFM → repair) or tlc (Du et al. 2020 baseline)")
       ->check(CLI::IsMember({"ffm", "tlc"}));
-  app.add_option("--refined-input", refined_path, "where to write the refined source (enables refinement)");
+  app.add_option("--refined-input", refined_path, "where to write the refined source; refinement (chord splits, cone repair) is enabled only with this path");
   app.add_option("--rationals", rationals_path, "also write the output coordinates as exact rationals (VOLMAP num/den)");
   app.add_option("--max-growth", max_growth, "tet growth budget of the cone repair (fraction of input tets)");
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
-  app.add_option("--time-limit", time_limit, "soft time limit in seconds (0 = none)");
+  app.add_option("--time-limit", time_limit, "soft time limit in seconds (default 60; 0 = none: every stage then runs to its own iteration cap, which can take many minutes)");
   app.add_option("--threads", threads, "worker threads (0 = all cores)");
   app.add_option("--tlc-share", tlc_share, "cascade: fraction of the remaining time given to the first TLC stage")
       ->check(CLI::Range(0.0, 1.0));
@@ -153,6 +153,8 @@ int main(int argc, char** argv) {
                   r.growth(), certified ? r.certified_by.c_str() : "-", r.seconds);
       if (r.feasibility.infeasible_with_any_refinement())
         std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
+      else if (!certified && refined_path.empty() && !no_refine)
+        std::printf("  refinement was off: give --refined-input <path> to allow chord splits and cone repair\n");
       for (const auto& s : r.stages) std::printf("  %-18s %8.3f s  non-positive after: %zu\n", s.name.c_str(), s.seconds, s.nonpositive_after);
     }
     return certified ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
