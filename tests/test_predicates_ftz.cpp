@@ -168,6 +168,12 @@ TEST_CASE("the doctest run honours VOLMAP_TEST_FTZ_DAZ (scripts/test.sh sets it 
 #ifdef VOLMAP_TEST_HAVE_MXCSR
 namespace {
 
+// The oracle cases, computed in the default environment (GMP's conversions need gradual underflow).
+std::vector<Case> oracle_cases() {
+  DefaultEnvironment env;
+  return make_cases();
+}
+
 struct ScopeRun {
   int wrong2 = 0, wrong3 = 0, wrongc = 0, wrongs = 0;
   bool switched = false;
@@ -209,11 +215,7 @@ TEST_CASE("FpEnvironmentScope makes unchecked predicates exact when the caller s
 #ifndef VOLMAP_TEST_HAVE_MXCSR
   MESSAGE("skipped: no MXCSR on this architecture");
 #else
-  std::vector<Case> cases;
-  {
-    DefaultEnvironment env;
-    cases = make_cases();
-  }
+  const std::vector<Case> cases = oracle_cases();
   ScopeRun run;
   unsigned before = 0, after = 0;
   std::vector<int> naive_default, naive_ftz;
@@ -245,11 +247,7 @@ TEST_CASE("FpEnvironmentScope makes unchecked predicates exact when the caller s
 
 TEST_CASE("FpEnvironmentScope switches rounding mode to nearest and restores it") {
 #ifdef VOLMAP_TEST_HAVE_MXCSR
-  std::vector<Case> cases;
-  {
-    DefaultEnvironment env;
-    cases = make_cases();
-  }
+  const std::vector<Case> cases = oracle_cases();
   const unsigned saved = _mm_getcsr();
   _mm_setcsr((saved & ~0x6000u) | 0x6000u);  // round toward zero
   const ScopeRun run = run_in_scope(cases);
@@ -309,9 +307,8 @@ TEST_CASE("negative control: unchecked members misused under FTZ|DAZ inside a de
 #ifdef VOLMAP_TEST_HAVE_MXCSR
   // Breaking the contract on purpose (MXCSR changed inside the scope) must be able to give wrong
   // signs: this shows the members really skip the check, so the exactness above is the scope's work.
-  std::vector<Case> cases;
   DefaultEnvironment env;
-  cases = make_cases();
+  const std::vector<Case> cases = oracle_cases();
   volmap::FpEnvironmentScope fp;
   REQUIRE_FALSE(fp.switched());
   int wrong = 0, checked_wrong = 0;
