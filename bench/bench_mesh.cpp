@@ -142,6 +142,13 @@ void BM_AnalyzeTopology(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(analyze_topology(d).num_faces);
 }
 
+// check_invariants without (arg 0) and with (arg 1) the exact positivity pass over every tet: the
+// difference is the pass alone (scalar orient3d per tet inside one FpEnvironmentScope).
+void BM_CheckInvariants(benchmark::State& st) {
+  const TetMesh m(grid(std::size_t(st.range(0))));
+  for (auto _ : st) benchmark::DoNotOptimize(m.check_invariants(st.range(1) != 0).ok);
+}
+
 }  // namespace
 
 // Grid sizes: 16^3*6 = 24 576, 50^3*6 = 750 000, 70^3*6 = 2 058 000 tets.
@@ -150,6 +157,7 @@ BENCHMARK(BM_AllEdgeStars)->Arg(16)->Arg(50)->Arg(70)->Unit(benchmark::kMillisec
 BENCHMARK(BM_EdgeCache)->Arg(16)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BoundarySurface)->Arg(16)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AnalyzeTopology)->Arg(16)->Arg(50)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CheckInvariants)->Args({50, 0})->Args({50, 1})->Unit(benchmark::kMillisecond);
 
 // Real meshes from ../shared/data (skipped when absent): read, build, topology, boundary surface.
 void report_real(const char* relative, int reps) {

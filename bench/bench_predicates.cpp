@@ -344,9 +344,9 @@ int main(int argc, char** argv) {
 
 // ---- Cost of the per-call MXCSR check (predicates/src/fp_env.hpp) -------------------------------
 // Every public predicate reads MXCSR (stmxcsr, mask, predicted branch) before its filter and re-enters
-// the default FP environment when FTZ/DAZ/non-nearest rounding is on. The library has no check-free
-// entry point, so the anchor is differential, in the same run, on the random set (stage A decides:
-// the path where one check weighs most):
+// the default FP environment when FTZ/DAZ/non-nearest rounding is on. Differential anchor (written
+// before FpEnvironmentScope gave a check-free entry point; the direct comparison follows below), in
+// the same run, on the random set (stage A decides: the path where one check weighs most):
 //   mxcsr_orient3d_1check   volmap::orient3d as shipped (its own check)
 //   mxcsr_orient3d_2checks  the same call behind one more, identical, caller-side check
 //   mxcsr_check_only        the check alone in the loop (plus the loop's own load/add)
@@ -373,3 +373,64 @@ BENCHMARK(mxcsr_orient3d_2checks);
 BENCHMARK(mxcsr_check_only);
 }  // namespace
 #endif
+
+// ---- Checked free functions vs one FpEnvironmentScope + its unchecked members --------------------
+//   mxcsr_<pred>_<set>_checked  volmap::<pred> (one MXCSR check per call)
+//   mxcsr_<pred>_<set>_scope    volmap::FpEnvironmentScope fp (once, outside the timed loop); fp.<pred>
+//   mxcsr_ratio_<pred>_<set>    both in the same run, interleaved in blocks of 4096 calls timed with
+//                               steady_clock: counters checked_ns, scope_ns and ratio = checked/scope.
+#include <chrono>
+namespace {
+#define VOLMAP_SCOPE_BENCH(name, set, dim, npts, checked_expr, scope_expr)                                 \
+  void name##_checked(benchmark::State& state) {                                                          \
+    run_scalar(state, tuples(set, dim, npts), [](const Tuples& t, int i) { return long(checked_expr); });  \
+  }                                                                                                       \
+  void name##_scope(benchmark::State& state) {                                                            \
+    const volmap::FpEnvironmentScope fp;                                                                  \
+    run_scalar(state, tuples(set, dim, npts), [&fp](const Tuples& t, int i) { return long(scope_expr); }); \
+  }                                                                                                       \
+  void name##_ratio(benchmark::State& state) {                                                            \
+    const Tuples& t = tuples(set, dim, npts);                                                             \
+    using clock = std::chrono::steady_clock;                                                              \
+    double checked_s = 0, scope_s = 0;                                                                    \
+    long acc = 0;                                                                                         \
+    for (auto _ : state) {                                                                                \
+      const auto t0 = clock::now();                                                                       \
+      for (int i = 0; i < kTuples; ++i) acc += long(checked_expr);                                        \
+      const auto t1 = clock::now();                                                                       \
+      {                                                                                                   \
+        const volmap::FpEnvironmentScope fp;                                                              \
+        for (int i = 0; i < kTuples; ++i) acc += long(scope_expr);                                        \
+      }                                                                                                   \
+      const auto t2 = clock::now();                                                                       \
+      checked_s += std::chrono::duration<double>(t1 - t0).count();                                        \
+      scope_s += std::chrono::duration<double>(t2 - t1).count();                                          \
+    }                                                                                                     \
+    benchmark::DoNotOptimize(acc);                                                                        \
+    const double calls = double(state.iterations()) * kTuples;                                            \
+    state.counters["checked_ns"] = 1e9 * checked_s / calls;                                               \
+    state.counters["scope_ns"] = 1e9 * scope_s / calls;                                                   \
+    state.counters["ratio"] = scope_s > 0 ? checked_s / scope_s : 0.0;                                    \
+  }                                                                                                       \
+  BENCHMARK(name##_checked);                                                                              \
+  BENCHMARK(name##_scope);                                                                                \
+  BENCHMARK(name##_ratio)
+
+VOLMAP_SCOPE_BENCH(mxcsr_orient3d_random, Set::Random, 3, 4, volmap::orient3d(P(0), P(1), P(2), P(3)),
+                   fp.orient3d(P(0), P(1), P(2), P(3)));
+VOLMAP_SCOPE_BENCH(mxcsr_orient3d_neardeg, Set::NearDegenerate, 3, 4, volmap::orient3d(P(0), P(1), P(2), P(3)),
+                   fp.orient3d(P(0), P(1), P(2), P(3)));
+VOLMAP_SCOPE_BENCH(mxcsr_orient2d_random, Set::Random, 2, 3, volmap::orient2d(P(0), P(1), P(2)),
+                   fp.orient2d(P(0), P(1), P(2)));
+VOLMAP_SCOPE_BENCH(mxcsr_insphere_random, Set::Random, 3, 5, volmap::insphere(P(0), P(1), P(2), P(3), P(4)),
+                   fp.insphere(P(0), P(1), P(2), P(3), P(4)));
+
+// Cost of entering and leaving a scope (default environment: one stmxcsr, no ldmxcsr).
+void mxcsr_scope_enter_exit(benchmark::State& state) {
+  for (auto _ : state) {
+    volmap::FpEnvironmentScope fp;
+    benchmark::DoNotOptimize(&fp);
+  }
+}
+BENCHMARK(mxcsr_scope_enter_exit);
+}  // namespace

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <random>
 #include <vector>
@@ -157,5 +158,171 @@ TEST_CASE("the doctest run honours VOLMAP_TEST_FTZ_DAZ (scripts/test.sh sets it 
   } else {
     CHECK((_mm_getcsr() & (kFtz | kDaz)) == 0u);
   }
+#endif
+}
+
+// FpEnvironmentScope: one check for a loop, then unchecked member predicates. Inside a scope entered
+// under FTZ|DAZ (and under round-toward-zero) the unchecked calls must give the oracle's signs, and
+// the caller's MXCSR must come back exactly (control bits) after the scope, also when the scope is
+// left by an exception.
+#ifdef VOLMAP_TEST_HAVE_MXCSR
+namespace {
+
+// The oracle cases, computed in the default environment (GMP's conversions need gradual underflow).
+std::vector<Case> oracle_cases() {
+  DefaultEnvironment env;
+  return make_cases();
+}
+
+struct ScopeRun {
+  int wrong2 = 0, wrong3 = 0, wrongc = 0, wrongs = 0;
+  bool switched = false;
+  unsigned inside = 0;  // MXCSR seen inside the scope
+};
+
+ScopeRun run_in_scope(const std::vector<Case>& cases) {
+  ScopeRun r;
+  volmap::FpEnvironmentScope fp;
+  r.switched = fp.switched();
+  r.inside = _mm_getcsr();
+  for (const auto& c : cases) {
+    const double *a = &c.p[0], *b = &c.p[3], *d3 = &c.p[6], *e = &c.p[9], *f = &c.p[12];
+    r.wrong2 += fp.orient2d(a, b, d3) != c.o2;
+    r.wrong3 += fp.orient3d(a, b, d3, e) != c.o3;
+    r.wrongc += fp.incircle(a, b, d3, e) != c.ic;
+    r.wrongs += fp.insphere(a, b, d3, e, f) != c.is;
+  }
+  return r;
+}
+
+// How many cases the plain double determinant (orient3d form) signs differently in the current
+// environment than in `reference`: shows that the inputs are sensitive to FTZ|DAZ, so a scope that
+// forgot to switch the environment would fail the exactness checks.
+std::vector<int> naive_signs(const std::vector<Case>& cases) {
+  std::vector<int> s;
+  for (const auto& c : cases) {
+    const double* p = c.p.data();
+    volatile double det = or_::naive_orient3d(p, p + 3, p + 6, p + 9);
+    s.push_back((det > 0) - (det < 0));
+  }
+  return s;
+}
+
+}  // namespace
+#endif
+
+TEST_CASE("FpEnvironmentScope makes unchecked predicates exact when the caller set FTZ|DAZ") {
+#ifndef VOLMAP_TEST_HAVE_MXCSR
+  MESSAGE("skipped: no MXCSR on this architecture");
+#else
+  const std::vector<Case> cases = oracle_cases();
+  ScopeRun run;
+  unsigned before = 0, after = 0;
+  std::vector<int> naive_default, naive_ftz;
+  {
+    DefaultEnvironment env;
+    naive_default = naive_signs(cases);
+  }
+  {
+    FlushToZero ftz;
+    REQUIRE(flushes());
+    naive_ftz = naive_signs(cases);
+    before = _mm_getcsr();
+    run = run_in_scope(cases);
+    after = _mm_getcsr();
+  }
+  int sensitive = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) sensitive += naive_default[i] != naive_ftz[i];
+  CHECK(sensitive > 10);  // the inputs do flush under FTZ|DAZ: a scope that did not switch would be wrong
+  CHECK(run.switched);
+  CHECK((run.inside & 0xE040u) == 0u);  // inside: no FTZ, no DAZ, round-to-nearest
+  CHECK(run.wrong2 == 0);
+  CHECK(run.wrong3 == 0);
+  CHECK(run.wrongc == 0);
+  CHECK(run.wrongs == 0);
+  CHECK((after & ~0x3Fu) == (before & ~0x3Fu));  // control bits restored (exception flags may differ)
+  CHECK((after & (kFtz | kDaz)) == (kFtz | kDaz));
+#endif
+}
+
+TEST_CASE("FpEnvironmentScope switches rounding mode to nearest and restores it") {
+#ifdef VOLMAP_TEST_HAVE_MXCSR
+  const std::vector<Case> cases = oracle_cases();
+  const unsigned saved = _mm_getcsr();
+  _mm_setcsr((saved & ~0x6000u) | 0x6000u);  // round toward zero
+  const ScopeRun run = run_in_scope(cases);
+  const unsigned after = _mm_getcsr();
+  _mm_setcsr(saved);
+  CHECK(run.switched);
+  CHECK((run.inside & 0x6000u) == 0u);
+  CHECK(run.wrong3 == 0);
+  CHECK(run.wrongs == 0);
+  CHECK((after & 0x6000u) == 0x6000u);
+#endif
+}
+
+TEST_CASE("FpEnvironmentScope restores the caller's MXCSR when an exception leaves the scope") {
+#ifdef VOLMAP_TEST_HAVE_MXCSR
+  FlushToZero ftz;
+  const unsigned before = _mm_getcsr();
+  bool caught = false;
+  try {
+    volmap::FpEnvironmentScope fp;
+    CHECK(fp.switched());
+    CHECK((_mm_getcsr() & (kFtz | kDaz)) == 0u);
+    const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, d[3] = {0, 0, -1};
+    if (fp.orient3d(a, b, c, d) > 0) throw std::runtime_error("leave the scope");
+  } catch (const std::runtime_error&) {
+    caught = true;
+  }
+  CHECK(caught);
+  CHECK((_mm_getcsr() & ~0x3Fu) == (before & ~0x3Fu));
+  CHECK(flushes());
+#endif
+}
+
+TEST_CASE("FpEnvironmentScope in the default environment and nested scopes change nothing") {
+#ifdef VOLMAP_TEST_HAVE_MXCSR
+  DefaultEnvironment env;
+  const unsigned before = _mm_getcsr();
+  {
+    volmap::FpEnvironmentScope outer;
+    CHECK_FALSE(outer.switched());
+    CHECK(_mm_getcsr() == before);
+    {
+      FlushToZero ftz;  // the caller changes MXCSR inside the outer scope, then opens an inner one
+      volmap::FpEnvironmentScope inner;
+      CHECK(inner.switched());
+      CHECK((_mm_getcsr() & (kFtz | kDaz)) == 0u);
+      const double a[3] = {0x1p-1060, 0, 0}, b[3] = {0, 0x1p-1060, 0}, c[3] = {0, 0, 0x1p-1060}, d[3] = {0, 0, 0};
+      CHECK(inner.orient3d(a, b, c, d) == 1);  // det diag(2^-1060, 2^-1060, 2^-1060) > 0; DAZ would give 0
+    }
+    CHECK((_mm_getcsr() & ~0x3Fu) == (before & ~0x3Fu));
+  }
+  CHECK((_mm_getcsr() & ~0x3Fu) == (before & ~0x3Fu));
+#endif
+}
+
+TEST_CASE("negative control: unchecked members misused under FTZ|DAZ inside a default-entered scope") {
+#ifdef VOLMAP_TEST_HAVE_MXCSR
+  // Breaking the contract on purpose (MXCSR changed inside the scope) must be able to give wrong
+  // signs: this shows the members really skip the check, so the exactness above is the scope's work.
+  DefaultEnvironment env;
+  const std::vector<Case> cases = oracle_cases();
+  volmap::FpEnvironmentScope fp;
+  REQUIRE_FALSE(fp.switched());
+  int wrong = 0, checked_wrong = 0;
+  {
+    FlushToZero ftz;
+    for (const auto& c : cases) {
+      const double *a = &c.p[0], *b = &c.p[3], *d3 = &c.p[6], *e = &c.p[9], *f = &c.p[12];
+      wrong += (fp.orient2d(a, b, d3) != c.o2) + (fp.orient3d(a, b, d3, e) != c.o3) +
+               (fp.incircle(a, b, d3, e) != c.ic) + (fp.insphere(a, b, d3, e, f) != c.is);
+      checked_wrong += (volmap::orient3d(a, b, d3, e) != c.o3) + (volmap::insphere(a, b, d3, e, f) != c.is);
+    }
+  }
+  MESSAGE("unchecked members under FTZ|DAZ: " << wrong << " wrong signs of " << 4 * cases.size());
+  CHECK(wrong > 0);
+  CHECK(checked_wrong == 0);  // the checked free functions stay exact in the same environment
 #endif
 }

@@ -37,12 +37,13 @@ struct Splitter {
 
   // Are all children (each parent with one of `verts` replaced by point p) strictly positive?
   bool children_positive(const std::vector<std::uint32_t>& parents, const std::uint32_t* verts, int n, const double* p) const {
+    const FpEnvironmentScope fp;  // one MXCSR check for all children
     for (std::uint32_t t : parents) {
       const std::uint32_t* tv = &mesh.tets[4 * std::size_t(t)];
       for (int j = 0; j < n; ++j) {
         const double* q[4];
         for (int i = 0; i < 4; ++i) q[i] = tv[i] == verts[j] ? p : P(tv[i]);
-        if (orient3d(q[0], q[1], q[2], q[3]) <= 0) return false;
+        if (fp.orient3d(q[0], q[1], q[2], q[3]) <= 0) return false;
       }
     }
     return true;

@@ -134,18 +134,24 @@ bool chebyshev_point(const std::vector<double>& tri, double* q, double* slack) {
   return true;
 }
 
-bool verified_inside(const std::vector<double>& tri, const double* q) {
+// Exact: q strictly on the inner side of every triangle (fp: the caller's environment scope).
+bool verified_inside(const FpEnvironmentScope& fp, const std::vector<double>& tri, const double* q) {
   for (std::size_t f = 0; f < tri.size() / 9; ++f)
-    if (orient3d(&tri[9 * f], &tri[9 * f + 3], &tri[9 * f + 6], q) <= 0) return false;
+    if (fp.orient3d(&tri[9 * f], &tri[9 * f + 3], &tri[9 * f + 6], q) <= 0) return false;
   return true;
+}
+
+bool strict_kernel_point_in(const FpEnvironmentScope& fp, const std::vector<double>& tri, double* q) {
+  double slack = 0;
+  if (!chebyshev_point(tri, q, &slack) || !(slack > 0)) return false;
+  return verified_inside(fp, tri, q);
 }
 
 }  // namespace
 
 bool strict_kernel_point(const std::vector<double>& tri, double* q) {
-  double slack = 0;
-  if (!chebyshev_point(tri, q, &slack) || !(slack > 0)) return false;
-  return verified_inside(tri, q);
+  const FpEnvironmentScope fp;
+  return strict_kernel_point_in(fp, tri, q);
 }
 
 namespace {
@@ -245,6 +251,9 @@ class ConeRepairer {
   }
 
  private:
+  // One floating-point environment check for the whole repair (the repairer lives on the stack of
+  // cone_repair(), single-threaded): every exact sign below is fp_.orient3d, the unchecked predicate.
+  const FpEnvironmentScope fp_;
   TetMeshData& src_;
   std::vector<std::uint8_t>& onb_;
   std::vector<double>& tx_;
@@ -268,7 +277,7 @@ class ConeRepairer {
   const double* T(std::uint32_t v) const { return &tx_[3 * std::size_t(v)]; }
   int target_sign(std::uint32_t t) const {
     const std::uint32_t* v = &src_.tets[4 * std::size_t(t)];
-    return orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3]));
+    return fp_.orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3]));
   }
 
   std::vector<std::vector<std::uint32_t>> find_clusters() {
@@ -487,11 +496,11 @@ class ConeRepairer {
           }
       double slack_t = -1, slack_s = -1;
       bool have_t = chebyshev_point(tri_t, q, &slack_t);
-      const bool ok_t = have_t && slack_t > 0 && verified_inside(tri_t, q);
+      const bool ok_t = have_t && slack_t > 0 && verified_inside(fp_, tri_t, q);
       bool ok_s = false, have_s = false;
       if (ok_t) {
         have_s = chebyshev_point(tri_s, p, &slack_s);
-        ok_s = have_s && slack_s > 0 && verified_inside(tri_s, p);
+        ok_s = have_s && slack_s > 0 && verified_inside(fp_, tri_s, p);
         if (ok_s) return true;
       }
       // Grow behind the most violated constraint of the failing space (faces on ∂M cannot move).
@@ -521,7 +530,7 @@ class ConeRepairer {
         const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
         double d = -std::numeric_limits<double>::max();
         if (len > 0) d = (nn[0] * (pt[0] - a[0]) + nn[1] * (pt[1] - a[1]) + nn[2] * (pt[2] - a[2])) / len;
-        if (orient3d(a, b, c, pt) > 0 && d <= 0) d = std::numeric_limits<double>::min();
+        if (fp_.orient3d(a, b, c, pt) > 0 && d <= 0) d = std::numeric_limits<double>::min();
         if (d < worst) {
           worst = d;
           worst_face = f;
@@ -557,7 +566,7 @@ class ConeRepairer {
       bool outside = false;
       for (int i = 0; i < 4 && !outside; ++i) {
         const std::uint8_t* l = kTetFaceLocal[i];
-        h.sign[i] = orient3d(S(tv[l[0]]), S(tv[l[1]]), S(tv[l[2]]), x);
+        h.sign[i] = fp_.orient3d(S(tv[l[0]]), S(tv[l[1]]), S(tv[l[2]]), x);
         if (h.sign[i] < 0) outside = true;
         zeros += h.sign[i] == 0;
       }
@@ -600,12 +609,12 @@ class ConeRepairer {
     bool placed = false;
     for (double t : {0.0, 1e-6, 1e-4, 1e-2, 0.1, 0.5, 1.0}) {
       for (int d = 0; d < 3; ++d) cand[d] = y[d] + t * (c[d] - y[d]);
-      if (verified_inside(tri, cand)) {
+      if (verified_inside(fp_, tri, cand)) {
         placed = true;
         break;
       }
     }
-    if (!placed && !strict_kernel_point(tri, cand)) return false;
+    if (!placed && !strict_kernel_point_in(fp_, tri, cand)) return false;
     for (int d = 0; d < 3; ++d) tx_[3 * std::size_t(u) + d] = cand[d];
     for (const Hit& h : hits) local[h.k].dead = true;
     local.insert(local.end(), fresh.begin(), fresh.end());
@@ -634,7 +643,7 @@ class ConeRepairer {
     for (std::uint32_t v : interior) {
       bool inside = true;
       for (const auto& f : faces_)
-        if (orient3d(S(f.v[0]), S(f.v[1]), S(f.v[2]), S(v)) <= 0) {
+        if (fp_.orient3d(S(f.v[0]), S(f.v[1]), S(f.v[2]), S(v)) <= 0) {
           inside = false;
           break;
         }
@@ -671,7 +680,8 @@ class ConeRepairer {
     for (const auto& lt : local)
       if (!lt.dead) {
         const auto& v = lt.v;
-        if (orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0) return restore();
+        if (fp_.orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || fp_.orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0)
+          return restore();
         live.push_back(lt);
       }
     const long long net = (long long)live.size() - (long long)region_.size();
@@ -792,6 +802,7 @@ RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& te
   std::size_t bad = res.nonpositive_before;
   std::vector<double> tri;
   std::vector<std::uint8_t> mark(nv, 0);
+  const FpEnvironmentScope fp;  // one MXCSR check for all kernel verifications below
   for (int sweep = 0; sweep < max_sweeps && bad > 0; ++sweep) {
     res.sweeps = sweep + 1;
     std::vector<std::uint32_t> cand;
@@ -816,7 +827,7 @@ RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& te
           for (int i = 0; i < 3; ++i) tri.push_back(X[3 * std::size_t(tv[fl[j]]) + i]);
       }
       double q[3];
-      if (!strict_kernel_point(tri, q)) continue;
+      if (!strict_kernel_point_in(fp, tri, q)) continue;
       for (int i = 0; i < 3; ++i) X[3 * std::size_t(v) + i] = q[i];
       ++moved;
     }

@@ -5,7 +5,8 @@
 // ranges, nodes in one array, no per-node heap storage); for every triangle, in parallel blocks,
 // query the BVH for the triangles after it (in BVH order) whose closed boxes overlap and run the
 // exact pair test chosen by how many vertex ids the two share. Box tests compare doubles only
-// (exact); every sign is volmap::orient3d/orient2d.
+// (exact); every sign is an exact orient3d/orient2d, called unchecked inside one FpEnvironmentScope
+// per block of work (one MXCSR check per block instead of per call; predicates.hpp).
 //
 // Why testing the six edges suffices for two closed triangles (non-adjacent case): their intersection
 // is a compact convex set; an extreme point of it cannot lie in the relative interior of both
@@ -36,12 +37,15 @@ struct P2 {
   double v[2];
 };
 inline P2 project(const double* p, int k) { return P2{{p[kAxes[k][0]], p[kAxes[k][1]]}}; }
-inline int o2(const P2& a, const P2& b, const P2& c) { return orient2d(a.v, b.v, c.v); }
+inline int o2(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c) {
+  return fp.orient2d(a.v, b.v, c.v);
+}
 
 // A projection under which triangle abc stays non-degenerate (so it is injective on abc's plane),
 // or -1 when abc is degenerate. The candidate with the largest double normal component is tried
 // first; the choice is then confirmed by the exact orient2d.
-int projection_for(const double* a, const double* b, const double* c, int* orientation_out = nullptr) {
+int projection_for(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                   int* orientation_out = nullptr) {
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
   const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
   const double n[3] = {std::fabs(uy * vz - uz * vy), std::fabs(uz * vx - ux * vz), std::fabs(ux * vy - uy * vx)};
@@ -50,7 +54,7 @@ int projection_for(const double* a, const double* b, const double* c, int* orien
   const double weight[3] = {n[2], n[0], n[1]};
   std::sort(order, order + 3, [&](int x, int y) { return weight[x] > weight[y]; });
   for (int k : order) {
-    const int o = o2(project(a, k), project(b, k), project(c, k));
+    const int o = o2(fp, project(a, k), project(b, k), project(c, k));
     if (o != 0) {
       if (orientation_out) *orientation_out = o;
       return k;
@@ -68,10 +72,10 @@ inline bool on_segment_collinear(const P2& p, const P2& q, const P2& x) {
 }
 
 // Closed segments pq and ab share a point (both non-degenerate).
-bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b) {
-  const int d1 = o2(p, q, a), d2 = o2(p, q, b);
+bool segments_intersect_2d(const FpEnvironmentScope& fp, const P2& p, const P2& q, const P2& a, const P2& b) {
+  const int d1 = o2(fp, p, q, a), d2 = o2(fp, p, q, b);
   if ((d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0)) return false;
-  const int d3 = o2(a, b, p), d4 = o2(a, b, q);
+  const int d3 = o2(fp, a, b, p), d4 = o2(fp, a, b, q);
   if ((d3 > 0 && d4 > 0) || (d3 < 0 && d4 < 0)) return false;
   if (d1 != 0 || d2 != 0) return true;  // not all collinear: the straddles above imply a crossing
   // All four collinear: overlap iff an endpoint of one lies on the other.
@@ -80,24 +84,26 @@ bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b) {
 }
 
 // x in the closed triangle abc of orientation o (!= 0).
-inline bool point_in_triangle_2d(const P2& a, const P2& b, const P2& c, int o, const P2& x) {
-  return o * o2(a, b, x) >= 0 && o * o2(b, c, x) >= 0 && o * o2(c, a, x) >= 0;
+inline bool point_in_triangle_2d(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c, int o,
+                                 const P2& x) {
+  return o * o2(fp, a, b, x) >= 0 && o * o2(fp, b, c, x) >= 0 && o * o2(fp, c, a, x) >= 0;
 }
 
 // x in the closed cone at apex a spanned by rays ab and ac (o = orient2d(a,b,c) != 0); x != a.
-inline bool point_in_cone_2d(const P2& a, const P2& b, const P2& c, int o, const P2& x) {
-  return o * o2(a, b, x) >= 0 && o * o2(a, x, c) >= 0;
+inline bool point_in_cone_2d(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c, int o, const P2& x) {
+  return o * o2(fp, a, b, x) >= 0 && o * o2(fp, a, x, c) >= 0;
 }
 
 // Closed segment pq meets the closed triangle abc, all coplanar, in projection k where abc has
 // orientation o.
-bool coplanar_segment_triangle(const double* p, const double* q, const double* a, const double* b,
-                               const double* c, int k, int o) {
+bool coplanar_segment_triangle(const FpEnvironmentScope& fp, const double* p, const double* q, const double* a,
+                               const double* b, const double* c, int k, int o) {
   const P2 P = project(p, k), Q = project(q, k), A = project(a, k), B = project(b, k), C = project(c, k);
-  if (point_in_triangle_2d(A, B, C, o, P) || point_in_triangle_2d(A, B, C, o, Q)) return true;
+  if (point_in_triangle_2d(fp, A, B, C, o, P) || point_in_triangle_2d(fp, A, B, C, o, Q)) return true;
   const bool pq_degenerate = P.v[0] == Q.v[0] && P.v[1] == Q.v[1];
   if (pq_degenerate) return false;  // a point outside the triangle
-  return segments_intersect_2d(P, Q, A, B) || segments_intersect_2d(P, Q, B, C) || segments_intersect_2d(P, Q, C, A);
+  return segments_intersect_2d(fp, P, Q, A, B) || segments_intersect_2d(fp, P, Q, B, C) ||
+         segments_intersect_2d(fp, P, Q, C, A);
 }
 
 inline bool strictly_same_side(int s0, int s1, int s2) {
@@ -105,18 +111,18 @@ inline bool strictly_same_side(int s0, int s1, int s2) {
 }
 
 // Segment pq against non-degenerate triangle abc, given op = orient3d(a,b,c,p), oq = orient3d(a,b,c,q).
-bool segment_triangle_with_signs(const double* p, const double* q, const double* a, const double* b,
-                                 const double* c, int op, int oq) {
+bool segment_triangle_with_signs(const FpEnvironmentScope& fp, const double* p, const double* q, const double* a,
+                                 const double* b, const double* c, int op, int oq) {
   if ((op > 0 && oq > 0) || (op < 0 && oq < 0)) return false;
   if (op == 0 && oq == 0) {
     int o = 0;
-    const int k = projection_for(a, b, c, &o);
+    const int k = projection_for(fp, a, b, c, &o);
     if (k < 0) return false;  // caller guarantees non-degenerate; be safe
-    return coplanar_segment_triangle(p, q, a, b, c, k, o);
+    return coplanar_segment_triangle(fp, p, q, a, b, c, k, o);
   }
   // The line pq is transversal to the plane and the segment reaches it: it meets the closed triangle
   // iff the crossing point is on the inner side (or on) of all three edge lines.
-  const int s1 = orient3d(p, q, a, b), s2 = orient3d(p, q, b, c), s3 = orient3d(p, q, c, a);
+  const int s1 = fp.orient3d(p, q, a, b), s2 = fp.orient3d(p, q, b, c), s3 = fp.orient3d(p, q, c, a);
   const bool has_pos = s1 > 0 || s2 > 0 || s3 > 0;
   const bool has_neg = s1 < 0 || s2 < 0 || s3 < 0;
   return !(has_pos && has_neg);
@@ -124,40 +130,42 @@ bool segment_triangle_with_signs(const double* p, const double* q, const double*
 
 // ---------------------------------------------------------------- pair tests by shared ids -----
 // t = (a,b,c), u = (a,b,d): share edge ab.
-bool shared_edge_pair(const double* a, const double* b, const double* c, const double* d) {
-  if (orient3d(a, b, c, d) != 0) return false;  // distinct planes meet in line ab only
+bool shared_edge_pair(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                      const double* d) {
+  if (fp.orient3d(a, b, c, d) != 0) return false;  // distinct planes meet in line ab only
   int o = 0;
-  const int k = projection_for(a, b, c, &o);
+  const int k = projection_for(fp, a, b, c, &o);
   if (k < 0) return false;
-  const int od = o2(project(a, k), project(b, k), project(d, k));
+  const int od = o2(fp, project(a, k), project(b, k), project(d, k));
   return o * od > 0;  // d on c's side of ab: the triangles overlap (a fold)
 }
 
 // t = (a,b,c), u = (a,d,e): share vertex a only.
-bool shared_vertex_pair(const double* a, const double* b, const double* c, const double* d, const double* e) {
-  const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e);
+bool shared_vertex_pair(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                        const double* d, const double* e) {
+  const int sd = fp.orient3d(a, b, c, d), se = fp.orient3d(a, b, c, e);
   if ((sd > 0 && se > 0) || (sd < 0 && se < 0)) return false;  // u touches t's plane only at a
   if (sd == 0 || se == 0) {
     int o = 0;
-    const int k = projection_for(a, b, c, &o);
+    const int k = projection_for(fp, a, b, c, &o);
     if (k < 0) return false;
     const P2 A = project(a, k), B = project(b, k), C = project(c, k), D = project(d, k), E = project(e, k);
     if (sd == 0 && se == 0) {
       // Coplanar: the corner cones at a overlap beyond a iff a bounding ray of one lies in the other.
-      const int ou = o2(A, D, E);
+      const int ou = o2(fp, A, D, E);
       if (ou == 0) return false;  // u degenerate: excluded by the caller
-      return point_in_cone_2d(A, B, C, o, D) || point_in_cone_2d(A, B, C, o, E) ||
-             point_in_cone_2d(A, D, E, ou, B) || point_in_cone_2d(A, D, E, ou, C);
+      return point_in_cone_2d(fp, A, B, C, o, D) || point_in_cone_2d(fp, A, B, C, o, E) ||
+             point_in_cone_2d(fp, A, D, E, ou, B) || point_in_cone_2d(fp, A, D, E, ou, C);
     }
     // u meets t's plane in segment a-d (or a-e): it enters t iff that ray is in t's corner cone.
-    return point_in_cone_2d(A, B, C, o, sd == 0 ? D : E);
+    return point_in_cone_2d(fp, A, B, C, o, sd == 0 ? D : E);
   }
   // d and e strictly on opposite sides: u meets t's plane in segment aX, X on de. aX enters t iff X
   // lies in t's corner cone at a, i.e. on the inner side (or on) both edge lines through a. For a
   // transversal line de, orient3d(d,e,p,q) has the sign of se times the side of X w.r.t. line pq
   // (identity: orient3d(d,e,a,b) + orient3d(d,e,b,c) + orient3d(d,e,c,a) = orient3d(a,b,c,e) -
   // orient3d(a,b,c,d)); testing both signs against se rules out the vertical angle.
-  const int s1 = orient3d(d, e, a, b), s2 = orient3d(d, e, c, a);
+  const int s1 = fp.orient3d(d, e, a, b), s2 = fp.orient3d(d, e, c, a);
   return s1 * se >= 0 && s2 * se >= 0;
 }
 
@@ -280,27 +288,26 @@ void keep_smallest(std::vector<TrianglePair>& list, std::size_t cap) {
 }  // namespace
 
 // ------------------------------------------------------------------ public primitives ----------
-bool triangle_is_degenerate(const double* a, const double* b, const double* c) {
-  return projection_for(a, b, c) < 0;
-}
+// Each public primitive checks the floating-point environment once (FpEnvironmentScope) and runs
+// the unchecked predicates; the driver below opens one scope per block of queries instead.
+namespace {
 
-bool segment_intersects_triangle(const double* p, const double* q, const double* a, const double* b,
-                                 const double* c) {
-  return segment_triangle_with_signs(p, q, a, b, c, orient3d(a, b, c, p), orient3d(a, b, c, q));
-}
-
-bool triangles_intersect(const double* a, const double* b, const double* c, const double* d, const double* e,
-                         const double* f) {
-  const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
+bool triangles_intersect_in(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                            const double* d, const double* e, const double* f) {
+  const int sd = fp.orient3d(a, b, c, d), se = fp.orient3d(a, b, c, e), sf = fp.orient3d(a, b, c, f);
   if (strictly_same_side(sd, se, sf)) return false;
-  const int sa = orient3d(d, e, f, a), sb = orient3d(d, e, f, b), sc = orient3d(d, e, f, c);
+  const int sa = fp.orient3d(d, e, f, a), sb = fp.orient3d(d, e, f, b), sc = fp.orient3d(d, e, f, c);
   if (strictly_same_side(sa, sb, sc)) return false;
-  return segment_triangle_with_signs(a, b, d, e, f, sa, sb) || segment_triangle_with_signs(b, c, d, e, f, sb, sc) ||
-         segment_triangle_with_signs(c, a, d, e, f, sc, sa) || segment_triangle_with_signs(d, e, a, b, c, sd, se) ||
-         segment_triangle_with_signs(e, f, a, b, c, se, sf) || segment_triangle_with_signs(f, d, a, b, c, sf, sd);
+  return segment_triangle_with_signs(fp, a, b, d, e, f, sa, sb) ||
+         segment_triangle_with_signs(fp, b, c, d, e, f, sb, sc) ||
+         segment_triangle_with_signs(fp, c, a, d, e, f, sc, sa) ||
+         segment_triangle_with_signs(fp, d, e, a, b, c, sd, se) ||
+         segment_triangle_with_signs(fp, e, f, a, b, c, se, sf) ||
+         segment_triangle_with_signs(fp, f, d, a, b, c, sf, sd);
 }
 
-bool triangle_pair_intersects(const double* xyz, const std::uint32_t* t, const std::uint32_t* u) {
+bool triangle_pair_intersects_in(const FpEnvironmentScope& fp, const double* xyz, const std::uint32_t* t,
+                                 const std::uint32_t* u) {
   // Which corners of t appear in u.
   int in_u[3] = {-1, -1, -1};
   int shared = 0;
@@ -312,18 +319,42 @@ bool triangle_pair_intersects(const double* xyz, const std::uint32_t* t, const s
       }
   auto P = [&](std::uint32_t v) { return xyz + 3 * std::size_t(v); };
   if (shared >= 3) return true;  // the same triangle twice
-  if (shared == 0) return triangles_intersect(P(t[0]), P(t[1]), P(t[2]), P(u[0]), P(u[1]), P(u[2]));
+  if (shared == 0) return triangles_intersect_in(fp, P(t[0]), P(t[1]), P(t[2]), P(u[0]), P(u[1]), P(u[2]));
   if (shared == 2) {
     int c = 0;
     while (in_u[c] >= 0) ++c;  // t's corner not in u
     int d = 0;
     while (u[d] == t[(c + 1) % 3] || u[d] == t[(c + 2) % 3]) ++d;
-    return shared_edge_pair(P(t[(c + 1) % 3]), P(t[(c + 2) % 3]), P(t[c]), P(u[d]));
+    return shared_edge_pair(fp, P(t[(c + 1) % 3]), P(t[(c + 2) % 3]), P(t[c]), P(u[d]));
   }
   int a = 0;
   while (in_u[a] < 0) ++a;
   const int j = in_u[a];
-  return shared_vertex_pair(P(t[a]), P(t[(a + 1) % 3]), P(t[(a + 2) % 3]), P(u[(j + 1) % 3]), P(u[(j + 2) % 3]));
+  return shared_vertex_pair(fp, P(t[a]), P(t[(a + 1) % 3]), P(t[(a + 2) % 3]), P(u[(j + 1) % 3]), P(u[(j + 2) % 3]));
+}
+
+}  // namespace
+
+bool triangle_is_degenerate(const double* a, const double* b, const double* c) {
+  const FpEnvironmentScope fp;
+  return projection_for(fp, a, b, c) < 0;
+}
+
+bool segment_intersects_triangle(const double* p, const double* q, const double* a, const double* b,
+                                 const double* c) {
+  const FpEnvironmentScope fp;
+  return segment_triangle_with_signs(fp, p, q, a, b, c, fp.orient3d(a, b, c, p), fp.orient3d(a, b, c, q));
+}
+
+bool triangles_intersect(const double* a, const double* b, const double* c, const double* d, const double* e,
+                         const double* f) {
+  const FpEnvironmentScope fp;
+  return triangles_intersect_in(fp, a, b, c, d, e, f);
+}
+
+bool triangle_pair_intersects(const double* xyz, const std::uint32_t* t, const std::uint32_t* u) {
+  const FpEnvironmentScope fp;
+  return triangle_pair_intersects_in(fp, xyz, t, u);
 }
 
 // ------------------------------------------------------------------ driver ---------------------
@@ -374,6 +405,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   std::vector<Box> boxes(num_tris);
   std::vector<std::uint8_t> degenerate(num_tris, 0);
   auto prepare = [&](std::size_t begin, std::size_t end) {
+    const FpEnvironmentScope fp;  // per block: MXCSR is per thread
     for (std::size_t t = begin; t < end; ++t) {
       const std::uint32_t* tri = tris + 3 * t;
       const double *a = xyz + 3 * std::size_t(tri[0]), *b = xyz + 3 * std::size_t(tri[1]), *c = xyz + 3 * std::size_t(tri[2]);
@@ -382,7 +414,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
         box.lo[k] = std::min({a[k], b[k], c[k]});
         box.hi[k] = std::max({a[k], b[k], c[k]});
       }
-      degenerate[t] = (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || triangle_is_degenerate(a, b, c)) ? 1 : 0;
+      degenerate[t] = (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || projection_for(fp, a, b, c) < 0) ? 1 : 0;
     }
   };
   if (parallel)
@@ -406,6 +438,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   std::vector<BlockResult> blocks(num_blocks);
   auto run_block = [&](std::size_t block) {
     BlockResult& out = blocks[block];
+    const FpEnvironmentScope fp;  // one MXCSR check per block of queries (per thread)
     std::uint32_t stack[96];
     const std::size_t end = std::min(num_tris, (block + 1) * kBlock);
     for (std::size_t position = block * kBlock; position < end; ++position) {
@@ -428,7 +461,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
           if (degenerate[u] || !overlap(bvh.leaf_boxes[i], query)) continue;
           ++out.candidates;
           const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
-          if (triangle_pair_intersects(xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {
+          if (triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {
             ++out.pairs;
             if (cap > 0) {
               out.smallest.push_back(TrianglePair{lo, hi});

@@ -812,10 +812,11 @@ InvariantReport TetMesh::check_invariants(bool check_positive) const {
   }
   if (live_v != num_live_vertices_) return fail("live vertex count mismatch");
   if (check_positive) {
+    const FpEnvironmentScope fp;  // one MXCSR check for the whole pass (predicates.hpp)
     for (std::size_t t = 0; t < nts; ++t) {
       const std::uint32_t* p = &tv_[4 * t];
       if (p[0] == kNone) continue;
-      if (orient3d(&xyz_[3 * std::size_t(p[0])], &xyz_[3 * std::size_t(p[1])], &xyz_[3 * std::size_t(p[2])],
+      if (fp.orient3d(&xyz_[3 * std::size_t(p[0])], &xyz_[3 * std::size_t(p[1])], &xyz_[3 * std::size_t(p[2])],
                    &xyz_[3 * std::size_t(p[3])]) <= 0)
         return fail("tet " + std::to_string(t) + " is not strictly positive");
     }

@@ -340,13 +340,11 @@ bool finite_points(const double* const* p, int n, int dim) {
   return ok;
 }
 
-}  // namespace
-
 // -----------------------------------------------------------------------------------------------
-// Public scalar predicates.
+// Scalar predicate bodies (L2 filter, then the slow layers), without the environment check: the
+// public functions check MXCSR first, FpEnvironmentScope's members rely on the scope instead.
 
-int orient2d(const double* a, const double* b, const double* c) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient2d(a, b, c));
+__attribute__((always_inline)) inline int orient2d_body(const double* a, const double* b, const double* c) {
   const double detleft = (a[0] - c[0]) * (b[1] - c[1]);
   const double detright = (a[1] - c[1]) * (b[0] - c[0]);
   const double det = detleft - detright;
@@ -356,8 +354,7 @@ int orient2d(const double* a, const double* b, const double* c) {
   return orient2d_slow(a, b, c, permanent);
 }
 
-int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d(a, b, c, d));
+__attribute__((always_inline)) inline int orient3d_body(const double* a, const double* b, const double* c, const double* d) {
 #if defined(__SSE2__)
   // Stage A with the x,y columns in SSE2 pairs: the same products, minors, sums and evaluation order
   // as orient3d_stage_a (det = (adz·m1 + bdz·m2) + cdz·m3), so Shewchuk's bound applies unchanged;
@@ -398,8 +395,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
 #endif
 }
 
-int incircle(const double* a, const double* b, const double* c, const double* d) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(incircle(a, b, c, d));
+__attribute__((always_inline)) inline int incircle_body(const double* a, const double* b, const double* c, const double* d) {
   const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
   const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
   const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, alift = adx * adx + ady * ady;
@@ -416,8 +412,7 @@ int incircle(const double* a, const double* b, const double* c, const double* d)
   return incircle_slow(a, b, c, d);
 }
 
-int insphere(const double* a, const double* b, const double* c, const double* d, const double* e) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(insphere(a, b, c, d, e));
+__attribute__((always_inline)) inline int insphere_body(const double* a, const double* b, const double* c, const double* d, const double* e) {
   const double aex = a[0] - e[0], bex = b[0] - e[0], cex = c[0] - e[0], dex = d[0] - e[0];
   const double aey = a[1] - e[1], bey = b[1] - e[1], cey = c[1] - e[1], dey = d[1] - e[1];
   const double aez = a[2] - e[2], bez = b[2] - e[2], cez = c[2] - e[2], dez = d[2] - e[2];
@@ -451,6 +446,58 @@ int insphere(const double* a, const double* b, const double* c, const double* d,
       ((alift + blift + clift + dlift) <= 0x1p200))
     return sign_of(det);
   return insphere_slow(a, b, c, d, e);
+}
+
+}  // namespace
+
+// -----------------------------------------------------------------------------------------------
+// Public scalar predicates: one MXCSR check per call (fp_env.hpp), then the body.
+
+int orient2d(const double* a, const double* b, const double* c) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient2d_body(a, b, c));
+  return orient2d_body(a, b, c);
+}
+int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_body(a, b, c, d));
+  return orient3d_body(a, b, c, d);
+}
+int incircle(const double* a, const double* b, const double* c, const double* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(incircle_body(a, b, c, d));
+  return incircle_body(a, b, c, d);
+}
+int insphere(const double* a, const double* b, const double* c, const double* d, const double* e) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(insphere_body(a, b, c, d, e));
+  return insphere_body(a, b, c, d, e);
+}
+
+// -----------------------------------------------------------------------------------------------
+// FpEnvironmentScope: one check for a whole loop; the members are the bodies without a check.
+
+FpEnvironmentScope::FpEnvironmentScope() noexcept {
+#ifdef VOLMAP_PREDICATES_HAVE_MXCSR
+  saved_ = _mm_getcsr();
+  switched_ = (saved_ & kNonDefaultFpBits) != 0u;
+  if (switched_) _mm_setcsr(saved_ & ~kNonDefaultFpBits);
+#endif
+}
+FpEnvironmentScope::~FpEnvironmentScope() {
+#ifdef VOLMAP_PREDICATES_HAVE_MXCSR
+  // The caller's control bits; exception flags raised inside the scope (bits 0-5) stay raised.
+  if (switched_) _mm_setcsr(saved_ | (_mm_getcsr() & 0x3Fu));
+#endif
+}
+int FpEnvironmentScope::orient2d(const double* a, const double* b, const double* c) const {
+  return orient2d_body(a, b, c);
+}
+int FpEnvironmentScope::orient3d(const double* a, const double* b, const double* c, const double* d) const {
+  return orient3d_body(a, b, c, d);
+}
+int FpEnvironmentScope::incircle(const double* a, const double* b, const double* c, const double* d) const {
+  return incircle_body(a, b, c, d);
+}
+int FpEnvironmentScope::insphere(const double* a, const double* b, const double* c, const double* d,
+                                 const double* e) const {
+  return insphere_body(a, b, c, d, e);
 }
 
 int orient2d_checked(const double* a, const double* b, const double* c) {
