@@ -140,7 +140,22 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
   const auto r = volmap::cone_repair(m, bnd, target);
   CHECK(r.failed_clusters == 0);
   CHECK(r.patches >= 1);
+  CHECK(r.attempts >= r.patches);
+  CHECK(r.growth_steps >= r.patches);
+  CHECK(r.lp_solves >= 2 * r.patches);  // a patch needs a verified kernel point in both spaces
   check_refinement(m0, target0, bnd0, m, target, bnd);
+  // The stall limit only cuts failing growth: without it the same patches are applied.
+  {
+    auto m2 = m0;
+    auto bnd2 = bnd0;
+    auto target2 = target0;
+    volmap::ConeRepairOptions o;
+    o.stall_growth_steps = 0;
+    const auto r2 = volmap::cone_repair(m2, bnd2, target2, o);
+    CHECK(r2.patches == r.patches);
+    CHECK(m2.tets == m.tets);
+    CHECK(target2 == target);
+  }
   MESSAGE("scrambled: " << bad0 << " inverted in " << r.clusters << " clusters, " << r.patches << " patches, tets " << m0.num_tets()
                         << " -> " << m.num_tets());
 }
@@ -184,6 +199,10 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     CHECK(m.tets == m0.tets);
     CHECK(m.xyz == m0.xyz);
     CHECK(target == target0);
+    // Diagnostics: every failed attempt has exactly one reason, here the region limit.
+    CHECK(r.attempts == r.failures.region_limit);
+    CHECK(r.failures.last_no_target + r.failures.last_no_source <= r.failures.region_limit);
+    CHECK(r.failures.reinsertion + r.failures.not_positive + r.failures.face_mismatch + r.failures.budget == 0);
   }
   SUBCASE("tet budget too small") {
     const int n = 4;

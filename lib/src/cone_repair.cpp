@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -208,7 +209,7 @@ class ConeRepairer {
   }
 
   ConeRepairResult run() {
-    ConeRepairResult res;
+    ConeRepairResult& res = res_;
     res.tets_before = src_.num_tets();
     const std::size_t nv0 = src_.num_vertices();
     for (int round = 0; round < std::max(1, opt_.max_rounds); ++round) {
@@ -226,6 +227,7 @@ class ConeRepairer {
         cluster.erase(std::remove_if(cluster.begin(), cluster.end(), [&](std::uint32_t t) { return !alive_[t] || target_sign(t) > 0; }),
                       cluster.end());
         if (cluster.empty()) continue;
+        ++res.attempts;
         if (repair_cluster(cluster)) {
           ++applied;
           res.max_region = std::max(res.max_region, region_.size());
@@ -249,6 +251,7 @@ class ConeRepairer {
   std::vector<std::uint8_t>& onb_;
   std::vector<double>& tx_;
   ConeRepairOptions opt_;
+  ConeRepairResult res_;
   bool has_labels_ = false;
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint64_t> nb_;
@@ -435,8 +438,19 @@ class ConeRepairer {
     std::vector<std::uint32_t> bad_vertices, comp;
     std::vector<std::array<std::uint32_t, 2>> bad_edges;
     std::vector<double> tri_t, tri_s;
+    auto& fail = res_.failures;
+    int last_fail = 0;  // 1 target kernel empty, 2 source kernel empty
+    double best_progress = -std::numeric_limits<double>::infinity();
+    int best_step = 0;
+    auto growth_failed = [&](std::size_t& counter) {
+      ++counter;
+      if (last_fail == 1) ++fail.last_no_target;
+      if (last_fail == 2) ++fail.last_no_source;
+      return false;
+    };
     for (int step = 0; step < opt_.max_growth_steps; ++step) {
-      if (opt_.max_region_tets > 0 && region_.size() > opt_.max_region_tets) return false;
+      ++res_.growth_steps;
+      if (opt_.max_region_tets > 0 && region_.size() > opt_.max_region_tets) return growth_failed(fail.region_limit);
       region_boundary();
       std::size_t ncomp = 0;
       const long long chi = ball_check(bad_vertices, bad_edges, comp, ncomp);
@@ -453,7 +467,7 @@ class ConeRepairer {
             if (tv[0] == e[1] || tv[1] == e[1] || tv[2] == e[1] || tv[3] == e[1]) added += add_with_merge(t);
           }
         }
-        if (added == 0) return false;
+        if (added == 0) return growth_failed(fail.not_ball);
         continue;
       }
       if (ncomp > 1 || chi != 2) {
@@ -474,7 +488,7 @@ class ConeRepairer {
           for (std::size_t k = 0; k + 1 < behind.size(); ++k)
             if (behind[k] == behind[k + 1]) added += add_with_merge(behind[k]);
         }
-        if (added == 0) return false;
+        if (added == 0) return growth_failed(fail.not_ball);
         continue;
       }
       tri_t.clear();
@@ -486,16 +500,31 @@ class ConeRepairer {
             tri_s.push_back(S(f.v[k])[i]);
           }
       double slack_t = -1, slack_s = -1;
+      res_.lp_solves += 1;
       bool have_t = chebyshev_point(tri_t, q, &slack_t);
       const bool ok_t = have_t && slack_t > 0 && verified_inside(tri_t, q);
       bool ok_s = false, have_s = false;
       if (ok_t) {
+        ++res_.lp_solves;
         have_s = chebyshev_point(tri_s, p, &slack_s);
         ok_s = have_s && slack_s > 0 && verified_inside(tri_s, p);
         if (ok_s) return true;
       }
+      // Progress: the LP slack of the failing space (source phase ranked above the target phase).
+      // Measured on stalled G1 star maps (gargoyle, camile_hand): failing regions wander for hundreds
+      // of steps without improving it; a 128-step stall limit keeps every patch of the 400-step run
+      // (45 patches) and cuts the time 5.7 s → 1.4 s (gargoyle), 3.8 s → 1.6 s (camile_hand).
+      const double progress = ok_t ? 2.0 + (have_s ? slack_s : -1.0) : (have_t ? slack_t : -1.0);
+      if (progress > best_progress) {
+        best_progress = progress;
+        best_step = step;
+      } else if (opt_.stall_growth_steps > 0 && step - best_step >= opt_.stall_growth_steps) {
+        last_fail = ok_t ? 2 : 1;
+        return growth_failed(fail.stalled);
+      }
       // Grow behind the most violated constraint of the failing space (faces on ∂M cannot move).
       const bool target_fails = !ok_t;
+      last_fail = target_fails ? 1 : 2;
       const std::vector<double>& tri = target_fails ? tri_t : tri_s;
       double pt[3];
       if (target_fails ? have_t : have_s) {
@@ -527,10 +556,10 @@ class ConeRepairer {
           worst_face = f;
         }
       }
-      if (worst_face == faces_.size()) return false;
+      if (worst_face == faces_.size()) return growth_failed(fail.no_growth_face);
       add_with_merge(std::uint32_t(faces_[worst_face].outside / 4));
     }
-    return false;
+    return growth_failed(fail.growth_steps);
   }
 
   // Local complex of a patch.
@@ -614,7 +643,17 @@ class ConeRepairer {
 
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
     double p[3], q[3];
-    if (!grow_region(cluster, p, q)) return false;
+    const auto t_grow = std::chrono::steady_clock::now();
+    const bool grown = grow_region(cluster, p, q);
+    const auto t_patch = std::chrono::steady_clock::now();
+    res_.seconds_growth += std::chrono::duration<double>(t_patch - t_grow).count();
+    if (!grown) return false;
+    struct PatchClock {
+      ConeRepairResult& r;
+      std::chrono::steady_clock::time_point t;
+      ~PatchClock() { r.seconds_patch += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); }
+    } patch_clock{res_, t_patch};
+    auto& fail = res_.failures;
     const std::size_t nv0 = src_.num_vertices();
     // Interior vertices of R: on R's tets but not on ∂R.
     ++vstamp_;
@@ -626,7 +665,10 @@ class ConeRepairer {
         const std::uint32_t v = src_.tets[4 * std::size_t(t) + i];
         if (vmark_[v] == vstamp_) continue;
         vmark_[v] = vstamp_;
-        if (onb_[v]) return false;  // cannot happen for a ball R (∂M vertices lie on ∂R)
+        if (onb_[v]) {  // cannot happen for a ball R (∂M vertices lie on ∂R)
+          ++fail.not_ball;
+          return false;
+        }
         interior.push_back(v);
       }
     // Apex: an interior vertex already in the strict source kernel (no new vertex), else w = p.
@@ -665,17 +707,26 @@ class ConeRepairer {
     for (const auto& f : faces_)
       local.push_back({{f.v[0], f.v[1], f.v[2], w}, has_labels_ ? src_.tet_labels[f.inner_tet] : 0, false});
     for (std::uint32_t v : interior)
-      if (v != w && !insert_vertex(v, local)) return restore();
+      if (v != w && !insert_vertex(v, local)) {
+        ++fail.reinsertion;
+        return restore();
+      }
     // Every new tet exactly positive in both spaces (by construction; checked).
     std::vector<LocalTet> live;
     for (const auto& lt : local)
       if (!lt.dead) {
         const auto& v = lt.v;
-        if (orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0) return restore();
+        if (orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0) {
+          ++fail.not_positive;
+          return restore();
+        }
         live.push_back(lt);
       }
     const long long net = (long long)live.size() - (long long)region_.size();
-    if (opt_.max_added_tets > 0 && net_added_ + net > (long long)opt_.max_added_tets) return restore();
+    if (opt_.max_added_tets > 0 && net_added_ + net > (long long)opt_.max_added_tets) {
+      ++fail.budget;
+      return restore();
+    }
     // Face matching: interior faces pair up, the others must be exactly the faces of ∂R.
     struct Key {
       Tri f;
@@ -695,11 +746,12 @@ class ConeRepairer {
     for (std::size_t k = 0; k < keys.size();) {
       std::size_t j = k;
       while (j < keys.size() && keys[j].f == keys[k].f) ++j;
-      if (j - k != 2) return restore();
-      const bool r0 = keys[k].id & kRegionBit, r1 = keys[k + 1].id & kRegionBit;
-      if (r0) return restore();  // sorted by id: a region face sorts last, so two region faces or none local
+      // Sorted by id, a region face sorts last: a region face first means two region faces or none local.
+      if (j - k != 2 || (keys[k].id & kRegionBit)) {
+        ++fail.face_mismatch;
+        return restore();
+      }
       links.push_back({keys[k].id, keys[k + 1].id});
-      (void)r1;
       k = j;
     }
     // Commit: reuse R's slots, append the rest.
@@ -768,8 +820,12 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_
     throw Error(ErrorKind::BadInput, "", 0, "cone_repair: inconsistent array sizes");
   for (std::uint32_t v : source.tets)
     if (v >= source.num_vertices()) throw Error(ErrorKind::BadInput, "", 0, "cone_repair: tet vertex id out of range");
+  const auto t0 = std::chrono::steady_clock::now();
   ConeRepairer repairer(source, on_boundary, target_xyz, options);
-  return repairer.run();
+  const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ConeRepairResult res = repairer.run();
+  res.seconds_setup = setup;
+  return res;
 }
 
 RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked,
