@@ -144,17 +144,23 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
   CHECK(r.growth_steps >= r.patches);
   CHECK(r.lp_solves >= 2 * r.patches);  // a patch needs a verified kernel point in both spaces
   check_refinement(m0, target0, bnd0, m, target, bnd);
-  // The stall limit only cuts failing growth: without it the same patches are applied.
-  {
+  for (int variant = 0; variant < 2; ++variant) {
     auto m2 = m0;
     auto bnd2 = bnd0;
     auto target2 = target0;
     volmap::ConeRepairOptions o;
-    o.stall_growth_steps = 0;
+    if (variant == 0) o.stall_growth_steps = 0;  // no stall limit
+    if (variant == 1) o.growth_lookahead = 1;    // plain most-violated-face growth
     const auto r2 = volmap::cone_repair(m2, bnd2, target2, o);
-    CHECK(r2.patches == r.patches);
-    CHECK(m2.tets == m.tets);
-    CHECK(target2 == target);
+    CHECK(r2.failed_clusters == 0);
+    check_refinement(m0, target0, bnd0, m2, target2, bnd2);
+    if (variant == 0) {  // the stall limit only cuts failing growth: the same patches are applied
+      CHECK(r2.patches == r.patches);
+      CHECK(m2.tets == m.tets);
+      CHECK(target2 == target);
+    } else {
+      CHECK(r2.lp_solves <= r.lp_solves);  // the lookahead solves extra LPs per growth step
+    }
   }
   MESSAGE("scrambled: " << bad0 << " inverted in " << r.clusters << " clusters, " << r.patches << " patches, tets " << m0.num_tets()
                         << " -> " << m.num_tets());

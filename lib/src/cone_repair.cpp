@@ -428,9 +428,36 @@ class ConeRepairer {
     return num_vertices - num_edges + (long long)nf;
   }
 
+  // The faces of ∂R as LP triangles (9 doubles each) in target and source coordinates.
+  void face_triangles(std::vector<double>& tri_t, std::vector<double>& tri_s) const {
+    tri_t.clear();
+    tri_s.clear();
+    for (const auto& f : faces_)
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i) {
+          tri_t.push_back(T(f.v[k])[i]);
+          tri_s.push_back(S(f.v[k])[i]);
+        }
+  }
+
+  // Kernel-LP progress of the current region (double only, for ranking growth candidates): the
+  // target slack, or 2 + the source slack once the target LP has an interior point.
+  double region_progress(std::vector<double>& tri_t, std::vector<double>& tri_s) {
+    region_boundary();
+    face_triangles(tri_t, tri_s);
+    double x[3], slack = -1;
+    ++res_.lp_solves;
+    if (!chebyshev_point(tri_t, x, &slack)) return -1.0;
+    if (!(slack > 0)) return slack;
+    ++res_.lp_solves;
+    return chebyshev_point(tri_s, x, &slack) ? 2.0 + slack : 1.0;
+  }
+
   // Grows region_ from the cluster until it is a ball whose boundary has a strict kernel point in
   // both spaces; p (source) and q (target) receive them.
-  bool grow_region(const std::vector<std::uint32_t>& cluster, double* p, double* q) {
+  // lookahead: growth candidates tried per step (<= 1: the most violated face only). A failure is
+  // counted in res_.failures only when count_failure is set.
+  bool grow_region(const std::vector<std::uint32_t>& cluster, double* p, double* q, int lookahead, bool count_failure) {
     ++region_stamp_;
     region_.clear();
     std::vector<std::uint32_t> st;
@@ -438,11 +465,13 @@ class ConeRepairer {
     std::vector<std::uint32_t> bad_vertices, comp;
     std::vector<std::array<std::uint32_t, 2>> bad_edges;
     std::vector<double> tri_t, tri_s;
+    std::vector<std::pair<double, std::uint32_t>> candidates;  // (violation, tet behind)
     auto& fail = res_.failures;
     int last_fail = 0;  // 1 target kernel empty, 2 source kernel empty
     double best_progress = -std::numeric_limits<double>::infinity();
     int best_step = 0;
     auto growth_failed = [&](std::size_t& counter) {
+      if (!count_failure) return false;
       ++counter;
       if (last_fail == 1) ++fail.last_no_target;
       if (last_fail == 2) ++fail.last_no_source;
@@ -491,14 +520,7 @@ class ConeRepairer {
         if (added == 0) return growth_failed(fail.not_ball);
         continue;
       }
-      tri_t.clear();
-      tri_s.clear();
-      for (const auto& f : faces_)
-        for (int k = 0; k < 3; ++k)
-          for (int i = 0; i < 3; ++i) {
-            tri_t.push_back(T(f.v[k])[i]);
-            tri_s.push_back(S(f.v[k])[i]);
-          }
+      face_triangles(tri_t, tri_s);
       double slack_t = -1, slack_s = -1;
       res_.lp_solves += 1;
       bool have_t = chebyshev_point(tri_t, q, &slack_t);
@@ -536,6 +558,7 @@ class ConeRepairer {
       }
       double worst = std::numeric_limits<double>::infinity();
       std::size_t worst_face = faces_.size();
+      candidates.clear();
       for (std::size_t f = 0; f < faces_.size(); ++f) {
         if (faces_[f].outside == kNoFace) continue;
         const double* a = &tri[9 * f];
@@ -551,13 +574,36 @@ class ConeRepairer {
         double d = -std::numeric_limits<double>::max();
         if (len > 0) d = (nn[0] * (pt[0] - a[0]) + nn[1] * (pt[1] - a[1]) + nn[2] * (pt[2] - a[2])) / len;
         if (orient3d(a, b, c, pt) > 0 && d <= 0) d = std::numeric_limits<double>::min();
+        if (d <= 0) candidates.push_back({d, std::uint32_t(faces_[f].outside / 4)});
         if (d < worst) {
           worst = d;
           worst_face = f;
         }
       }
       if (worst_face == faces_.size()) return growth_failed(fail.no_growth_face);
-      add_with_merge(std::uint32_t(faces_[worst_face].outside / 4));
+      std::uint32_t grow = std::uint32_t(faces_[worst_face].outside / 4);
+      if (lookahead > 1 && candidates.size() > 1) {
+        // Steepest ascent: try the tets behind the most violated faces, keep the one whose region
+        // has the best kernel LP slack (the most violated one alone often makes it worse).
+        std::sort(candidates.begin(), candidates.end());
+        double best = -std::numeric_limits<double>::infinity();
+        std::size_t tried = 0;
+        for (std::size_t k = 0; k < candidates.size() && tried < std::size_t(lookahead); ++k) {
+          const std::uint32_t t = candidates[k].second;
+          if (k > 0 && std::any_of(candidates.begin(), candidates.begin() + long(k), [&](const auto& c) { return c.second == t; })) continue;
+          ++tried;
+          const std::size_t mark = region_.size();
+          add_with_merge(t);
+          const double pr = region_progress(tri_t, tri_s);
+          for (std::size_t r = mark; r < region_.size(); ++r) in_region_[region_[r]] = 0;
+          region_.resize(mark);
+          if (pr > best) {
+            best = pr;
+            grow = t;
+          }
+        }
+      }
+      add_with_merge(grow);
     }
     return growth_failed(fail.growth_steps);
   }
@@ -644,7 +690,10 @@ class ConeRepairer {
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
     double p[3], q[3];
     const auto t_grow = std::chrono::steady_clock::now();
-    const bool grown = grow_region(cluster, p, q);
+    // Steepest-ascent growth first; the plain most-violated-face growth when it fails (each finds
+    // regions the other misses on G1 star maps).
+    const int lookahead = opt_.growth_lookahead;
+    const bool grown = grow_region(cluster, p, q, lookahead, lookahead <= 1) || (lookahead > 1 && grow_region(cluster, p, q, 1, true));
     const auto t_patch = std::chrono::steady_clock::now();
     res_.seconds_growth += std::chrono::duration<double>(t_patch - t_grow).count();
     if (!grown) return false;
