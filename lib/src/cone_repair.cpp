@@ -690,10 +690,15 @@ class ConeRepairer {
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
     double p[3], q[3];
     const auto t_grow = std::chrono::steady_clock::now();
-    // Steepest-ascent growth first; the plain most-violated-face growth when it fails (each finds
-    // regions the other misses on G1 star maps).
+    // Steepest-ascent growth first, then the plain most-violated-face growth, then a 2-candidate
+    // lookahead: each finds regions the others miss on G1 star maps (the greedy growth is path
+    // dependent); a failure is counted once, for the last try.
     const int lookahead = opt_.growth_lookahead;
-    const bool grown = grow_region(cluster, p, q, lookahead, lookahead <= 1) || (lookahead > 1 && grow_region(cluster, p, q, 1, true));
+    int tries[3] = {std::max(1, lookahead), 1, 2};
+    const int ntries = lookahead > 2 ? 3 : lookahead == 2 ? 2 : 1;
+    if (lookahead == 2) tries[1] = 1;
+    bool grown = false;
+    for (int k = 0; k < ntries && !grown; ++k) grown = grow_region(cluster, p, q, tries[k], k + 1 == ntries);
     const auto t_patch = std::chrono::steady_clock::now();
     res_.seconds_growth += std::chrono::duration<double>(t_patch - t_grow).count();
     if (!grown) return false;

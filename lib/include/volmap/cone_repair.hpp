@@ -23,7 +23,8 @@ struct ConeRepairOptions {
   std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
   std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
   int max_growth_steps = 400;         // per cluster
-  int growth_lookahead = 6;           // growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only
+  int growth_lookahead = 4;           // growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only
+                                      // (then plain growth and a 2-candidate lookahead are tried when it fails)
   int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
   int max_rounds = 8;                 // recompute clusters and retry
 };
