@@ -5,6 +5,9 @@
 // The LP is a dense condensed-tableau simplex (Bland's rule) in 4 variables (q, s): maximise s
 // subject to n̂_F·(q − a_F) ≥ s for every face and q in the faces' bounding box; solved in double,
 // the point is then verified with exact orient3d.
+// Growth of R (not in §7's text): steepest ascent on the kernel-LP slack over the tets behind the most
+// violated ∂R faces, stopped after ConeRepairOptions::stall_growth_steps steps without progress, then
+// retried with other lookaheads (the greedy is path dependent); see repair_cluster.
 #include <volmap/cone_repair.hpp>
 
 #include <volmap/boundary_faces.hpp>
@@ -534,8 +537,9 @@ class ConeRepairer {
       }
       // Progress: the LP slack of the failing space (source phase ranked above the target phase).
       // Measured on stalled G1 star maps (gargoyle, camile_hand): failing regions wander for hundreds
-      // of steps without improving it; a 128-step stall limit keeps every patch of the 400-step run
-      // (45 patches) and cuts the time 5.7 s → 1.4 s (gargoyle), 3.8 s → 1.6 s (camile_hand).
+      // of steps without improving it (the slack even gets worse); with plain growth a 128-step stall
+      // limit kept every patch of the 400-step run (45 patches) and cut the time 5.7 s → 1.4 s
+      // (gargoyle), 3.8 s → 1.6 s (camile_hand).
       const double progress = ok_t ? 2.0 + (have_s ? slack_s : -1.0) : (have_t ? slack_t : -1.0);
       if (progress > best_progress) {
         best_progress = progress;
