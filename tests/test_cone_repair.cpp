@@ -123,6 +123,33 @@ TEST_CASE("cone repair: the only interior vertex of a convex grid becomes the ap
   check_refinement(m0, target0, bnd0, m, target, bnd);
 }
 
+TEST_CASE("cone repair: an exhausted time limit leaves the mesh and map exactly as they were") {
+  const int n = 6;
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3)})
+    for (int i = 0; i < 3; ++i) target0[3 * c + i] += 0.3;
+  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  auto m = m0;
+  auto bnd = bnd0;
+  auto target = target0;
+  volmap::ConeRepairOptions o;
+  o.time_limit_seconds = 1e-12;  // already over when the first cluster would start
+  const auto r = volmap::cone_repair(m, bnd, target, o);
+  CHECK(r.patches == 0);
+  CHECK(r.failed_clusters == r.clusters);
+  CHECK(r.clusters > 0);
+  CHECK(m.tets == m0.tets);
+  CHECK(m.xyz == m0.xyz);
+  CHECK(target == target0);
+  CHECK(bnd == bnd0);
+  // The same state without the limit is repaired.
+  const auto r2 = volmap::cone_repair(m, bnd, target);
+  CHECK(r2.failed_clusters == 0);
+  CHECK(exact_bad(target, m.tets) == 0);
+}
+
 TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired") {
   const int n = 6;
   const auto m0 = map_test::kuhn_grid(n);
@@ -140,7 +167,28 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
   const auto r = volmap::cone_repair(m, bnd, target);
   CHECK(r.failed_clusters == 0);
   CHECK(r.patches >= 1);
+  CHECK(r.attempts >= r.patches);
+  CHECK(r.growth_steps >= r.patches);
+  CHECK(r.lp_solves >= 2 * r.patches);  // a patch needs a verified kernel point in both spaces
   check_refinement(m0, target0, bnd0, m, target, bnd);
+  for (int variant = 0; variant < 2; ++variant) {
+    auto m2 = m0;
+    auto bnd2 = bnd0;
+    auto target2 = target0;
+    volmap::ConeRepairOptions o;
+    if (variant == 0) o.stall_growth_steps = 0;  // no stall limit
+    if (variant == 1) o.growth_lookahead = 1;    // plain most-violated-face growth
+    const auto r2 = volmap::cone_repair(m2, bnd2, target2, o);
+    CHECK(r2.failed_clusters == 0);
+    check_refinement(m0, target0, bnd0, m2, target2, bnd2);
+    if (variant == 0) {  // the stall limit only cuts failing growth: the same patches are applied
+      CHECK(r2.patches == r.patches);
+      CHECK(m2.tets == m.tets);
+      CHECK(target2 == target);
+    } else {
+      CHECK(r2.lp_solves <= r.lp_solves);  // the lookahead solves extra LPs per growth step
+    }
+  }
   MESSAGE("scrambled: " << bad0 << " inverted in " << r.clusters << " clusters, " << r.patches << " patches, tets " << m0.num_tets()
                         << " -> " << m.num_tets());
 }
@@ -184,6 +232,10 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     CHECK(m.tets == m0.tets);
     CHECK(m.xyz == m0.xyz);
     CHECK(target == target0);
+    // Diagnostics: every failed attempt has exactly one reason, here the region limit.
+    CHECK(r.attempts == r.failures.region_limit);
+    CHECK(r.failures.last_no_target + r.failures.last_no_source <= r.failures.region_limit);
+    CHECK(r.failures.reinsertion + r.failures.not_positive + r.failures.face_mismatch + r.failures.budget == 0);
   }
   SUBCASE("tet budget too small") {
     const int n = 4;

@@ -184,6 +184,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     ConeRepairOptions co;
     const long long used = (long long)r.source.num_tets() - (long long)nt;
     co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget - used));
+    co.time_limit_seconds = remaining() > 0 ? 0.5 * remaining() : 0;
     const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
     r.cone_patches += cr.patches;
     if (cr.patches > 0) r.refined = true;
@@ -191,6 +192,10 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at = bad;  // retry only after progress elsewhere
     if (bad == 0) r.certified_by = "cone-repair";
   };
+  // With refinement, once few tets are left the global FFM stages are skipped: the B1 rounds (cone
+  // repair ↔ local FFM) finish such maps, while global FFM from a nearly valid map cost 2–7 s and was
+  // undone every time we looked (G1 ramses/gargoyle/camile_hand star: hundreds to 15k bad after it).
+  auto few_left_for_b1 = [&] { return b1_rounds && bad <= options.early_repair_max_bad; };
   if (bad > 0 && !out_of_time()) {
     t0 = elapsed();
     TlcOptions to;
@@ -202,6 +207,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     link_kernel();
     try_b1("tlc");
     // Cascade only: a second TLC round with a 100× smaller lift from the stalled result.
+    // Kept with few tets left too: its moves at an equal count are accepted and change the state the
+    // cone repair sees (G1 ramses star: 1 → 1 bad, then B1 certified; skipped, B1 stalled at 2).
     if (bad > 0 && options.method == MapMethod::Ffm && !out_of_time()) {
       t0 = elapsed();
       TlcOptions t2;
@@ -218,7 +225,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     try_b1("ffm-local");
   }
   // §5 FFM (regular reference, then rest shape), each followed by the link-kernel pre-step.
-  if (bad > 0 && options.method == MapMethod::Ffm) {
+  if (bad > 0 && options.method == MapMethod::Ffm && !few_left_for_b1()) {
     std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
     if (options.ffm_rest_shape_first) std::swap(refs[0], refs[1]);
     for (ReferenceShape ref : refs) {
@@ -246,12 +253,13 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // within max_growth · input tets.
   if (bad > 0 && b1_rounds) {
     phase_limit = options.time_limit_seconds;
-    bool global_tried = false;
-    for (int round = 0; round < 6 && bad > 0 && !out_of_time(); ++round) {
+    bool global_tried = false, tlc_retried = false;
+    for (int round = 0; round < 8 && bad > 0 && !out_of_time(); ++round) {
       t0 = elapsed();
       ConeRepairOptions co;
       const long long used = (long long)r.source.num_tets() - (long long)nt;
       co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget - used));
+      co.time_limit_seconds = remaining() > 0 ? 0.5 * remaining() : 0;
       const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
       r.cone_patches += cr.patches;
       if (cr.patches > 0) r.refined = true;
@@ -268,6 +276,22 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
       if (bad == 0 || out_of_time()) break;
       if (cr.patches == 0 && bad >= bad_before && bad >= bad_local) {
         if (global_tried) break;  // nothing moves any more
+        // Stalled: first a short TLC with a small lift over the whole mesh (moves at an equal count
+        // are kept and give the cone repair a different state: G1 ramses star, 1 bad left), then
+        // once a global FFM.
+        if (!tlc_retried) {
+          tlc_retried = true;
+          t0 = elapsed();
+          TlcOptions t2;
+          t2.alpha_ratio = 1e-8;
+          const double rem = remaining();
+          t2.time_limit_seconds = rem > 0 ? 0.25 * rem : 0;
+          tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, t2);
+          bad = stage_done("tlc-after-repair", t0);
+          if (bad == 0) r.certified_by = "tlc-after-repair";
+          link_kernel();
+          continue;
+        }
         global_tried = true;
         t0 = elapsed();
         FfmOptions fo;

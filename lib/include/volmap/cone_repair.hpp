@@ -23,7 +23,14 @@ struct ConeRepairOptions {
   std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
   std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
   int max_growth_steps = 400;         // per cluster
+  int growth_lookahead = 4;           // growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only
+                                      // (then plain growth and a 2-candidate lookahead are tried when it fails)
+  int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
   int max_rounds = 8;                 // recompute clusters and retry
+  // Wall-clock limit of the whole call (0 = none), checked before each cluster and at each growth
+  // step; a cluster interrupted by it is left exactly as it was (counted in failures.time_limit).
+  // G1 mouse star: 305 bad tets took 34 s without it.
+  double time_limit_seconds = 0;
 };
 
 struct ConeRepairResult {
@@ -32,6 +39,23 @@ struct ConeRepairResult {
   std::size_t failed_clusters = 0;    // clusters left (last round)
   std::size_t tets_before = 0, tets_after = 0, vertices_added = 0;
   std::size_t max_region = 0;         // largest |R| applied
+  // Diagnostics (every attempt of every round): why a cluster was left as it was.
+  struct Failures {
+    std::size_t region_limit = 0;       // R grew beyond max_region_tets
+    std::size_t growth_steps = 0;       // max_growth_steps exhausted
+    std::size_t stalled = 0;            // no LP progress for stall_growth_steps
+    std::size_t not_ball = 0;           // ∂R not a sphere and nothing left to add
+    std::size_t no_growth_face = 0;     // kernel empty but every violated face is on ∂M
+    std::size_t last_no_target = 0;     // of the growth failures: the target kernel was empty last
+    std::size_t last_no_source = 0;     //   ... the source kernel was empty last
+    std::size_t reinsertion = 0;        // an interior vertex of R could not be re-inserted
+    std::size_t not_positive = 0;       // a new tet not exactly positive in both spaces
+    std::size_t face_mismatch = 0;      // new tets do not close onto ∂R
+    std::size_t budget = 0;             // max_added_tets would be exceeded
+    std::size_t time_limit = 0;         // time_limit_seconds reached during growth
+  } failures;
+  std::size_t attempts = 0, growth_steps = 0, lp_solves = 0;  // work counters
+  double seconds_growth = 0, seconds_patch = 0, seconds_setup = 0;
 };
 
 // Repairs the clusters of non-positive target tets in place (source refined, target extended; new
