@@ -177,9 +177,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   // Early B1: as soon as a cascade stage leaves few non-positive tets, try the cone repair (it is
   // cheap — milliseconds on G1 — and leaves a cluster untouched when it fails), instead of spending
   // the cascade's whole time share on the last few tets (bone cube/star: 9.8 s → under 2 s).
-  std::size_t early_b1_stalled_at = std::size_t(-1);  // bad count of the last attempt that patched nothing
-  auto try_b1 = [&](const char* after) {
-    if (bad == 0 || !b1_rounds || bad > options.early_repair_max_bad || bad >= early_b1_stalled_at) return;
+  // B1 cone repair of every cluster, within what is left of the growth budget and half the time left.
+  auto run_cone_repair = [&](const std::string& name) {
     t0 = elapsed();
     ConeRepairOptions co;
     const long long used = (long long)r.source.num_tets() - (long long)nt;
@@ -188,7 +187,25 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
     r.cone_patches += cr.patches;
     if (cr.patches > 0) r.refined = true;
-    bad = stage_done(std::string("cone-repair-after-") + after, t0);
+    bad = stage_done(name, t0);
+    return cr;
+  };
+  // TLC with a 100× smaller lift (alpha 1e-8) from the current map, given `share` of the time left.
+  auto small_lift_tlc = [&](const std::string& name, double share) {
+    t0 = elapsed();
+    TlcOptions t2;
+    t2.alpha_ratio = 1e-8;
+    const double rem = remaining();
+    t2.time_limit_seconds = rem > 0 ? share * rem : 0;
+    tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, t2);
+    bad = stage_done(name, t0);
+    if (bad == 0) r.certified_by = name;
+    link_kernel();
+  };
+  std::size_t early_b1_stalled_at = std::size_t(-1);  // bad count of the last attempt that patched nothing
+  auto try_b1 = [&](const char* after) {
+    if (bad == 0 || !b1_rounds || bad > options.early_repair_max_bad || bad >= early_b1_stalled_at) return;
+    const ConeRepairResult cr = run_cone_repair(std::string("cone-repair-after-") + after);
     if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at = bad;  // retry only after progress elsewhere
     if (bad == 0) r.certified_by = "cone-repair";
   };
@@ -210,15 +227,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     // Kept with few tets left too: its moves at an equal count are accepted and change the state the
     // cone repair sees (G1 ramses star: 1 → 1 bad, then B1 certified; skipped, B1 stalled at 2).
     if (bad > 0 && options.method == MapMethod::Ffm && !out_of_time()) {
-      t0 = elapsed();
-      TlcOptions t2;
-      t2.alpha_ratio = 1e-8;
-      const double rem2 = remaining();
-      t2.time_limit_seconds = rem2 > 0 ? 0.3 * rem2 : 0;
-      tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, t2);
-      bad = stage_done("tlc-small-alpha", t0);
-      if (bad == 0) r.certified_by = "tlc-small-alpha";
-      link_kernel();
+      small_lift_tlc("tlc-small-alpha", 0.3);
       try_b1("tlc-small-alpha");
     }
     local_ffm(0.25);
@@ -248,23 +257,16 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     }
   }
 
-  // §7 B1 cone repair of what remains, in rounds: repair → link-kernel relocation → a short FFM on the
-  // repaired mesh (its connectivity changed) → repair again. The net tet growth of B0 + B1 stays
+  // §7 B1 cone repair of what remains, in rounds: repair → link-kernel relocation → local FFM on the
+  // repaired mesh (its connectivity changed) → repair again; when all stall, a small-lift TLC once,
+  // then a global FFM once. The net tet growth of B0 + B1 stays
   // within max_growth · input tets.
   if (bad > 0 && b1_rounds) {
     phase_limit = options.time_limit_seconds;
     bool global_tried = false, tlc_retried = false;
     for (int round = 0; round < 8 && bad > 0 && !out_of_time(); ++round) {
-      t0 = elapsed();
-      ConeRepairOptions co;
-      const long long used = (long long)r.source.num_tets() - (long long)nt;
-      co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget - used));
-      co.time_limit_seconds = remaining() > 0 ? 0.5 * remaining() : 0;
-      const ConeRepairResult cr = cone_repair(r.source, r.on_boundary, r.target_xyz, co);
-      r.cone_patches += cr.patches;
-      if (cr.patches > 0) r.refined = true;
       const std::size_t bad_before = bad;
-      bad = stage_done("cone-repair", t0);
+      const ConeRepairResult cr = run_cone_repair("cone-repair");
       if (bad == 0) r.certified_by = "cone-repair";
       link_kernel();
       if (bad == 0 || out_of_time()) break;
@@ -281,15 +283,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
         // once a global FFM.
         if (!tlc_retried) {
           tlc_retried = true;
-          t0 = elapsed();
-          TlcOptions t2;
-          t2.alpha_ratio = 1e-8;
-          const double rem = remaining();
-          t2.time_limit_seconds = rem > 0 ? 0.25 * rem : 0;
-          tlc_untangle(r.source.xyz, r.source.tets, r.on_boundary, r.target_xyz, t2);
-          bad = stage_done("tlc-after-repair", t0);
-          if (bad == 0) r.certified_by = "tlc-after-repair";
-          link_kernel();
+          small_lift_tlc("tlc-after-repair", 0.25);
           continue;
         }
         global_tried = true;
