@@ -758,7 +758,7 @@ class ConeRepairer {
     // growth never found a target kernel (also not with 20000-tet regions), while aiming at the
     // face centroid moved 2 units inward gives a 42-tet ball with strict kernels in both spaces.
     // The aimed target point is checked exactly, like every patch.
-    for (std::size_t k = 0; k < cluster.size() && k < 8 && !grown; ++k) {
+    for (std::size_t k = 0; opt_.aimed_growth && k < cluster.size() && k < 8 && !grown; ++k) {
       const std::uint32_t t = cluster[k];
       for (int i = 0; i < 4 && !grown; ++i) {
         if (nb_[4 * std::size_t(t) + i] != kNoFace) continue;
