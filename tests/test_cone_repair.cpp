@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -98,6 +99,39 @@ TEST_CASE("cone repair: one inverted vertex star in a Kuhn grid is repaired with
   check_refinement(m0, target0, bnd0, m, target, bnd);
   MESSAGE("one star: " << bad0 << " inverted, region " << r.max_region << ", tets " << m0.num_tets() << " -> " << m.num_tets()
                        << ", vertices +" << r.vertices_added);
+}
+
+TEST_CASE("cone repair: a free vertex pushed across a concave boundary valley is repaired with and without aimed growth") {
+  // Target: the unit-cube Kuhn grid with z scaled by 1 + 2|x − 0.5| (piecewise linear on the grid, so
+  // positive): the top is a V-shaped valley along x = 0.5 (reflex edge, like the valleys between the
+  // spikes of the star domain). The free vertex just below the valley is pushed up across the plane
+  // of the valley's top faces. (This small case is solved by the LP growth already; the aimed growth
+  // must leave it a valid refinement too. The LP-growth failure it was made for, G1 ramses star, is
+  // described in cone_repair.cpp.)
+  const int n = 6;
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  for (std::size_t u = 0; u < m0.num_vertices(); ++u) target0[3 * u + 2] *= 1 + 2 * std::abs(target0[3 * u] - 0.5);
+  REQUIRE(exact_bad(target0, m0.tets) == 0);
+  const int v = grid_id(n, 5, 3, 3);  // (0.5, 0.5, 5/6): the first index runs along z
+  REQUIRE(m0.xyz[3 * v + 0] == doctest::Approx(0.5));
+  REQUIRE(m0.xyz[3 * v + 1] == doctest::Approx(0.5));
+  REQUIRE(m0.xyz[3 * v + 2] == doctest::Approx(5.0 / 6.0));
+  target0[3 * v + 0] += 0.4;
+  target0[3 * v + 2] += 1.0;
+  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  for (bool aimed : {false, true}) {
+    auto m = m0;
+    auto bnd = bnd0;
+    auto target = target0;
+    volmap::ConeRepairOptions o;
+    o.aimed_growth = aimed;
+    const auto r = volmap::cone_repair(m, bnd, target, o);
+    CHECK(r.failed_clusters == 0);
+    CHECK(r.patches >= 1);
+    check_refinement(m0, target0, bnd0, m, target, bnd);
+  }
 }
 
 TEST_CASE("cone repair: the only interior vertex of a convex grid becomes the apex (no growth)") {

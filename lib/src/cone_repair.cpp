@@ -284,6 +284,7 @@ class ConeRepairer {
   long long net_added_ = 0;
   std::vector<std::uint32_t> region_;
   std::vector<RegionFace> faces_;
+  bool aimed_ = false;  // grow_region with a fixed target point
 
   Tri face(std::uint32_t t, int i) const {
     const std::uint32_t* tv = &src_.tets[4 * std::size_t(t)];
@@ -346,11 +347,12 @@ class ConeRepairer {
     region_.push_back(t);
     return true;
   }
-  // Adds t; when t is non-positive in the target, also the stars of its vertices (clusters merge).
+  // Adds t; when t is non-positive in the target, also the stars of its vertices (clusters merge;
+  // not in aimed growth, where the stars of a far-off vertex would bring in ∂M faces aim cannot see).
   std::size_t add_with_merge(std::uint32_t t) {
     if (!add_to_region(t)) return 0;
     std::size_t added = 1;
-    if (target_sign(t) <= 0) {
+    if (!aimed_ && target_sign(t) <= 0) {
       std::vector<std::uint32_t> st;
       for (int i = 0; i < 4; ++i) {
         star(src_.tets[4 * std::size_t(t) + i], st);
@@ -480,9 +482,14 @@ class ConeRepairer {
   // both spaces; p (source) and q (target) receive them.
   // lookahead: growth candidates tried per step (<= 1: the most violated face only). A failure is
   // counted in res_.failures only when count_failure is set.
-  bool grow_region(const std::vector<std::uint32_t>& cluster, double* p, double* q, int lookahead, bool count_failure) {
+  // aim (optional): a fixed target point instead of the target kernel LP; each step then adds the
+  // tets behind every face of ∂R that aim does not see strictly (exact orient3d), and the region is
+  // accepted when aim sees all of ∂R (q = aim) and the source LP has a verified strict point.
+  bool grow_region(const std::vector<std::uint32_t>& cluster, double* p, double* q, int lookahead, bool count_failure,
+                   const double* aim = nullptr) {
     ++region_stamp_;
     region_.clear();
+    aimed_ = aim != nullptr;
     std::vector<std::uint32_t> st;
     for (std::uint32_t t : cluster) add_with_merge(t);
     std::vector<std::uint32_t> bad_vertices, comp;
@@ -505,6 +512,17 @@ class ConeRepairer {
       ++res_.growth_steps;
       if (opt_.max_region_tets > 0 && region_.size() > opt_.max_region_tets) return growth_failed(fail.region_limit);
       region_boundary();
+      if (aim) {
+        // Aimed growth: exact visibility from aim first (before the ball repairs, which add whole
+        // stars); a face on ∂M that aim does not see ends it.
+        std::size_t added = 0;
+        for (const auto& f : faces_) {
+          if (fp_.orient3d(T(f.v[0]), T(f.v[1]), T(f.v[2]), aim) > 0) continue;
+          if (f.outside == kNoFace) return growth_failed(fail.no_growth_face);
+          added += add_to_region(std::uint32_t(f.outside / 4));
+        }
+        if (added > 0) continue;
+      }
       std::size_t ncomp = 0;
       const long long chi = ball_check(bad_vertices, bad_edges, comp, ncomp);
       if (!bad_vertices.empty() || !bad_edges.empty()) {
@@ -543,6 +561,16 @@ class ConeRepairer {
         }
         if (added == 0) return growth_failed(fail.not_ball);
         continue;
+      }
+      if (aim) {
+        // Aimed growth, ∂R a sphere seen from aim: the source kernel decides.
+        last_fail = 2;
+        for (int i = 0; i < 3; ++i) q[i] = aim[i];
+        face_triangles(tri_t, tri_s);
+        double slack_s = -1;
+        ++res_.lp_solves;
+        if (chebyshev_point(tri_s, p, &slack_s) && slack_s > 0 && verified_inside(fp_, tri_s, p)) return true;
+        return growth_failed(fail.stalled);
       }
       face_triangles(tri_t, tri_s);
       double slack_t = -1, slack_s = -1;
@@ -724,6 +752,34 @@ class ConeRepairer {
     if (lookahead == 2) tries[1] = 1;
     bool grown = false;
     for (int k = 0; k < ntries && !grown; ++k) grown = grow_region(cluster, p, q, tries[k], k + 1 == ntries);
+    // Then aimed growth from points just inside the ∂M faces of the cluster's tets. G1 ramses star
+    // (a frozen stalled state): a tet with a face on the concave valley between two spikes had its
+    // free 4th vertex 33 units beyond that face's plane, inside the neighbouring spike; the LP
+    // growth never found a target kernel (also not with 20000-tet regions), while aiming at the
+    // face centroid moved 2 units inward gives a 42-tet ball with strict kernels in both spaces.
+    // The aimed target point is checked exactly, like every patch.
+    for (std::size_t k = 0; opt_.aimed_growth && k < cluster.size() && k < 8 && !grown; ++k) {
+      const std::uint32_t t = cluster[k];
+      for (int i = 0; i < 4 && !grown; ++i) {
+        if (nb_[4 * std::size_t(t) + i] != kNoFace) continue;
+        const Tri f = face(t, i);
+        const double *a = T(f[0]), *b = T(f[1]), *c = T(f[2]);
+        double u[3], v[3];
+        for (int d = 0; d < 3; ++d) {
+          u[d] = c[d] - a[d];
+          v[d] = b[d] - a[d];
+        }
+        const double nn[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};  // inward
+        const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+        if (!(len > 0)) continue;
+        const double scale = std::sqrt(len);  // ~ the face's size
+        for (double k_dist : {1.0, 0.5, 2.0, 4.0}) {
+          double aim[3];
+          for (int d = 0; d < 3; ++d) aim[d] = (a[d] + b[d] + c[d]) / 3.0 + k_dist * scale * nn[d] / len;
+          if ((grown = grow_region(cluster, p, q, 1, false, aim))) break;
+        }
+      }
+    }
     const auto t_patch = std::chrono::steady_clock::now();
     res_.seconds_growth += std::chrono::duration<double>(t_patch - t_grow).count();
     if (!grown) return false;

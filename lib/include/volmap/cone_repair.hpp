@@ -31,6 +31,9 @@ struct ConeRepairOptions {
   // step; a cluster interrupted by it is left exactly as it was (counted in failures.time_limit).
   // G1 mouse star: 305 bad tets took 34 s without it.
   double time_limit_seconds = 0;
+  // When the LP growth fails on a cluster with a face on ∂M: grow again towards fixed target points
+  // just inside that face (exact visibility), see cone_repair.cpp.
+  bool aimed_growth = true;
 };
 
 struct ConeRepairResult {
