@@ -209,6 +209,20 @@ TEST_CASE("duck pair on rationals written from the doubles: same verdict; also 3
   fs::remove_all(d);
 }
 
+TEST_CASE("volmap-map-check reads legacy VTK maps: the GalaxyMaps example initial map has 2 flipped tets") {
+  VOLMAP_REQUIRE_DATA(object, "maps/galaxymaps/example_object.vtk");
+  VOLMAP_REQUIRE_DATA(parameter, "maps/galaxymaps/example_parameter.vtk");
+  const auto tool = volmap_test::tool("volmap-map-check").string();
+  auto r = vmap_test::run(tool + " " + quote(object.string()) + " " + quote(parameter.string()) + " --json");
+  CHECK(r.code == 1);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["num_tets"] == 10);
+  CHECK(j["output"]["negative"] == 2);
+  CHECK(j["output"]["positive"] == 8);
+  // The source against itself is valid.
+  CHECK(vmap_test::run(tool + " " + quote(object.string()) + " " + quote(object.string())).code == 0);
+}
+
 TEST_CASE("tools on malformed or mismatched files: exit 2; one-line reason; no crash") {
   const fs::path d = scratch();
   const TetMeshData grid = vmap_test::kuhn_grid(2);

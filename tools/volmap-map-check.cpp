@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, boundary_path, rat_in_path, rat_out_path;
   bool absolute = false, json = false;
   std::size_t max_bad = 20;
-  app.add_option("in.mesh", in_path, "source tet mesh")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets)")->required();
+  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk or .vtu by extension)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk or .vtu)")->required();
   app.add_option("--boundary", boundary_path, "boundary map: boundary vertices must sit exactly on it");
   app.add_option("--rationals-in", rat_in_path, "exact input coordinates (VOLMAP num/den file)");
   app.add_option("--rationals-out", rat_out_path, "exact output coordinates (VOLMAP num/den file)");
@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    const volmap::TetMeshData in = volmap::read_medit(in_path);
-    const volmap::TetMeshData out = volmap::read_medit(out_path);
+    const volmap::TetMeshData in = volmap::read_tet_mesh(in_path);
+    const volmap::TetMeshData out = volmap::read_tet_mesh(out_path);
     volmap::BoundaryMap map;
     if (!boundary_path.empty()) {
       map = volmap::read_boundary_map(boundary_path);
