@@ -26,6 +26,7 @@
 #include <iterator>
 #include <random>
 #include <string>
+#include <tuple>
 #include <sys/wait.h>
 
 namespace {
@@ -70,21 +71,36 @@ void check_refinement(const volmap::TetMeshData& before, const std::vector<doubl
   for (const auto& c : report.checks) CHECK_MESSAGE(c.passed, c.key << ": " << c.detail);
 }
 
+// A Kuhn grid with its boundary flags and a target to displace (…0: the state before the repair),
+// and a fresh copy repaired by repair() (m, bnd, target: the state after).
+struct GridCase {
+  explicit GridCase(int n) : m0(map_test::kuhn_grid(n)), bnd0(map_test::grid_boundary_flags(n)), target0(m0.xyz) {}
+  volmap::ConeRepairResult repair(const volmap::ConeRepairOptions& options = {}) {
+    m = m0;
+    bnd = bnd0;
+    target = target0;
+    return volmap::cone_repair(m, bnd, target, options);
+  }
+  volmap::TetMeshData m0;
+  std::vector<std::uint8_t> bnd0;
+  std::vector<double> target0;
+  volmap::TetMeshData m;
+  std::vector<std::uint8_t> bnd;
+  std::vector<double> target;
+};
+
 }  // namespace
 
 TEST_CASE("cone repair: one inverted vertex star in a Kuhn grid is repaired with original vertices kept") {
   const int n = 4;
-  const auto m0 = map_test::kuhn_grid(n);
-  const auto bnd0 = map_test::grid_boundary_flags(n);
-  auto target0 = m0.xyz;
+  GridCase c(n);
+  const auto& [m0, bnd0, target0] = std::tie(c.m0, c.bnd0, c.target0);
   const int v = grid_id(n, 2, 2, 2);
-  for (int i = 0; i < 3; ++i) target0[3 * v + i] += 0.3;  // past its neighbours (spacing 0.25): star inverted
+  for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;  // past its neighbours (spacing 0.25): star inverted
   const std::size_t bad0 = exact_bad(target0, m0.tets);
   REQUIRE(bad0 > 0);
-  auto m = m0;
-  auto bnd = bnd0;
-  auto target = target0;
-  const auto r = volmap::cone_repair(m, bnd, target);
+  const auto r = c.repair();
+  const auto& [m, bnd, target] = std::tie(c.m, c.bnd, c.target);
   CHECK(r.clusters >= 1);
   CHECK(r.patches >= 1);
   CHECK(r.failed_clusters == 0);
@@ -186,19 +202,16 @@ TEST_CASE("cone repair: an exhausted time limit leaves the mesh and map exactly 
 
 TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired") {
   const int n = 6;
-  const auto m0 = map_test::kuhn_grid(n);
-  const auto bnd0 = map_test::grid_boundary_flags(n);
-  auto target0 = m0.xyz;
+  GridCase gc(n);
+  const auto& [m0, bnd0, target0] = std::tie(gc.m0, gc.bnd0, gc.target0);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.25, 0.25);
   for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3), grid_id(n, 2, 5, 4), grid_id(n, 3, 3, 1), grid_id(n, 5, 5, 5)})
-    for (int i = 0; i < 3; ++i) target0[3 * c + i] += u(rng);
+    for (int i = 0; i < 3; ++i) gc.target0[3 * c + i] += u(rng);
   const std::size_t bad0 = exact_bad(target0, m0.tets);
   REQUIRE(bad0 > 0);
-  auto m = m0;
-  auto bnd = bnd0;
-  auto target = target0;
-  const auto r = volmap::cone_repair(m, bnd, target);
+  const auto r = gc.repair();
+  const auto& [m, bnd, target] = std::tie(gc.m, gc.bnd, gc.target);
   CHECK(r.failed_clusters == 0);
   CHECK(r.patches >= 1);
   CHECK(r.attempts >= r.patches);
