@@ -264,16 +264,13 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
   }
   SUBCASE("region limit too small") {
     const int n = 4;
-    const auto m0 = map_test::kuhn_grid(n);
-    auto bnd = map_test::grid_boundary_flags(n);
-    auto target0 = m0.xyz;
+    GridCase c(n);
     const int v = grid_id(n, 2, 2, 2);
-    for (int i = 0; i < 3; ++i) target0[3 * v + i] += 0.3;
-    auto m = m0;
-    auto target = target0;
+    for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;
     volmap::ConeRepairOptions o;
     o.max_region_tets = 4;
-    const auto r = volmap::cone_repair(m, bnd, target, o);
+    const auto r = c.repair(o);
+    const auto& [m0, target0, m, target] = std::tie(c.m0, c.target0, c.m, c.target);
     CHECK(r.failed_clusters > 0);
     CHECK(r.patches == 0);
     CHECK(m.tets == m0.tets);
@@ -286,16 +283,13 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
   }
   SUBCASE("tet budget too small") {
     const int n = 4;
-    const auto m0 = map_test::kuhn_grid(n);
-    auto bnd = map_test::grid_boundary_flags(n);
-    auto target0 = m0.xyz;
+    GridCase gc(n);
     for (int c : {grid_id(n, 2, 2, 2), grid_id(n, 1, 2, 2)})
-      for (int i = 0; i < 3; ++i) target0[3 * c + i] += 0.3;
-    auto m = m0;
-    auto target = target0;
+      for (int i = 0; i < 3; ++i) gc.target0[3 * c + i] += 0.3;
     volmap::ConeRepairOptions o;
     o.max_added_tets = 1;
-    const auto r = volmap::cone_repair(m, bnd, target, o);
+    const auto r = gc.repair(o);
+    const auto& [m0, m, target] = std::tie(gc.m0, gc.m, gc.target);
     // Whatever was applied stayed within the budget and valid; the rest is left as it was.
     CHECK(long(m.num_tets()) - long(m0.num_tets()) <= 1);
     CHECK(exact_bad(m.xyz, m.tets) == 0);
