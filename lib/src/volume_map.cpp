@@ -302,7 +302,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   }
 
   // Quality pass (never breaks validity: kept only when the exact check passes).
-  if (bad == 0 && options.quality_pass && !out_of_time()) {
+  // Not for --method tlc: the baseline reproduces the published method, not TLC + our quality pass.
+  if (bad == 0 && options.quality_pass && options.method == MapMethod::Ffm && !out_of_time()) {
     t0 = elapsed();
     double quality_seconds = std::max(options.quality_min_seconds, options.quality_time_ratio * t0);
     if (remaining() > 0) quality_seconds = std::min(quality_seconds, remaining());
