@@ -790,9 +790,9 @@ class ConeRepairer {
     // face centroid moved 2 units inward gives a 42-tet ball with strict kernels in both spaces.
     // The aimed target point is checked exactly, like every patch.
     // Aim points: per ∂M face of the first cluster tets, the centroid moved inward by 1, 0.5, 2, 4
-    // face sizes; then, per edge of such a face, points inside both half-spaces of the face and of
-    // the ∂M face across that edge (a concave valley edge: the first points may miss the other
-    // valley face).
+    // face sizes; then, per edge of such a face, the edge midpoint pushed inside both half-spaces
+    // of the face and of the ∂M face across that edge (at a concave valley edge the first points may
+    // not see the other valley face; these alone repair both frozen states with 25/27-tet balls).
     std::vector<std::array<double, 3>> aims;
     if (opt_.aimed_growth) {
       std::vector<std::array<double, 3>> valley;
