@@ -797,11 +797,28 @@ class ConeRepairer {
     if (opt_.aimed_growth) {
       std::vector<std::array<double, 3>> valley;
       std::vector<std::uint32_t> st;
+      // The ∂M faces of the first cluster tets, then the ∂M faces around their boundary vertices
+      // (G1 ramses star: a stuck tet with only an edge on ∂M, two free vertices 30 units beyond it).
+      std::vector<Tri> bfaces, around;
       for (std::size_t k = 0; k < cluster.size() && k < 8; ++k) {
         const std::uint32_t t = cluster[k];
         for (int i = 0; i < 4; ++i) {
-          if (nb_[4 * std::size_t(t) + i] != kNoFace) continue;
-          const Tri f = face(t, i);
+          if (nb_[4 * std::size_t(t) + i] == kNoFace) bfaces.push_back(face(t, i));
+          const std::uint32_t w = src_.tets[4 * std::size_t(t) + i];
+          if (!onb_[w]) continue;
+          star(w, st);
+          for (std::uint32_t s : st)
+            for (int j = 0; j < 4; ++j)
+              if (nb_[4 * std::size_t(s) + j] == kNoFace && src_.tets[4 * std::size_t(s) + j] != w) around.push_back(face(s, j));
+        }
+      }
+      for (const Tri& f : around) {
+        bool known = false;
+        for (const Tri& g : bfaces) known = known || sorted(g) == sorted(f);
+        if (!known && bfaces.size() < 64) bfaces.push_back(f);
+      }
+      for (const Tri& f : bfaces) {
+        {
           double nf[3], scale;
           if (!inward_unit_normal(f, nf, &scale)) continue;
           for (double k_dist : {1.0, 0.5, 2.0, 4.0}) {
