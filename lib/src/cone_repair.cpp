@@ -740,6 +740,37 @@ class ConeRepairer {
     return true;
   }
 
+  // Unit normal of the ∂M face f pointing into M (target space) and the face's size sqrt(2 area).
+  bool inward_unit_normal(const Tri& f, double* n, double* size) const {
+    const double *a = T(f[0]), *b = T(f[1]), *c = T(f[2]);
+    double u[3], v[3];
+    for (int d = 0; d < 3; ++d) {
+      u[d] = c[d] - a[d];
+      v[d] = b[d] - a[d];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) return false;
+    for (int d = 0; d < 3; ++d) n[d] /= len;
+    *size = std::sqrt(len);
+    return true;
+  }
+
+  // The ∂M face containing edge (a, b) other than the face with sorted vertices skip; {kNoTet,..} if none.
+  Tri boundary_face_across(std::uint32_t a, std::uint32_t b, const Tri& skip, std::vector<std::uint32_t>& st) {
+    star(a, st);
+    for (std::uint32_t t : st)
+      for (int i = 0; i < 4; ++i) {
+        if (nb_[4 * std::size_t(t) + i] != kNoFace) continue;
+        const Tri g = face(t, i);
+        const bool has_a = g[0] == a || g[1] == a || g[2] == a, has_b = g[0] == b || g[1] == b || g[2] == b;
+        if (has_a && has_b && sorted(g) != skip) return g;
+      }
+    return {kNoTet, kNoTet, kNoTet};
+  }
+
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
     double p[3], q[3];
     const auto t_grow = std::chrono::steady_clock::now();
@@ -758,28 +789,67 @@ class ConeRepairer {
     // growth never found a target kernel (also not with 20000-tet regions), while aiming at the
     // face centroid moved 2 units inward gives a 42-tet ball with strict kernels in both spaces.
     // The aimed target point is checked exactly, like every patch.
-    for (std::size_t k = 0; opt_.aimed_growth && k < cluster.size() && k < 8 && !grown; ++k) {
-      const std::uint32_t t = cluster[k];
-      for (int i = 0; i < 4 && !grown; ++i) {
-        if (nb_[4 * std::size_t(t) + i] != kNoFace) continue;
-        const Tri f = face(t, i);
-        const double *a = T(f[0]), *b = T(f[1]), *c = T(f[2]);
-        double u[3], v[3];
-        for (int d = 0; d < 3; ++d) {
-          u[d] = c[d] - a[d];
-          v[d] = b[d] - a[d];
-        }
-        const double nn[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};  // inward
-        const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-        if (!(len > 0)) continue;
-        const double scale = std::sqrt(len);  // ~ the face's size
-        for (double k_dist : {1.0, 0.5, 2.0, 4.0}) {
-          double aim[3];
-          for (int d = 0; d < 3; ++d) aim[d] = (a[d] + b[d] + c[d]) / 3.0 + k_dist * scale * nn[d] / len;
-          if ((grown = grow_region(cluster, p, q, 1, false, aim))) break;
+    // Aim points: per ∂M face of the first cluster tets, the centroid moved inward by 1, 0.5, 2, 4
+    // face sizes; then, per edge of such a face, the edge midpoint pushed inside both half-spaces
+    // of the face and of the ∂M face across that edge (at a concave valley edge the first points may
+    // not see the other valley face; these alone repair both frozen states with 25/27-tet balls).
+    std::vector<std::array<double, 3>> aims;
+    if (opt_.aimed_growth) {
+      std::vector<std::array<double, 3>> valley;
+      std::vector<std::uint32_t> st;
+      // The ∂M faces of the first cluster tets, then the ∂M faces around their boundary vertices
+      // (G1 ramses star: a stuck tet with only an edge on ∂M, two free vertices 30 units beyond it).
+      std::vector<Tri> bfaces, around;
+      for (std::size_t k = 0; k < cluster.size() && k < 8; ++k) {
+        const std::uint32_t t = cluster[k];
+        for (int i = 0; i < 4; ++i) {
+          if (nb_[4 * std::size_t(t) + i] == kNoFace) bfaces.push_back(face(t, i));
+          const std::uint32_t w = src_.tets[4 * std::size_t(t) + i];
+          if (!onb_[w]) continue;
+          star(w, st);
+          for (std::uint32_t s : st)
+            for (int j = 0; j < 4; ++j)
+              if (nb_[4 * std::size_t(s) + j] == kNoFace && src_.tets[4 * std::size_t(s) + j] != w) around.push_back(face(s, j));
         }
       }
+      for (const Tri& f : around) {
+        bool known = false;
+        for (const Tri& g : bfaces) known = known || sorted(g) == sorted(f);
+        if (!known && bfaces.size() < 64) bfaces.push_back(f);
+      }
+      for (const Tri& f : bfaces) {
+        {
+          double nf[3], scale;
+          if (!inward_unit_normal(f, nf, &scale)) continue;
+          for (double k_dist : {1.0, 0.5, 2.0, 4.0}) {
+            std::array<double, 3> aim;
+            for (int d = 0; d < 3; ++d) aim[d] = (T(f[0])[d] + T(f[1])[d] + T(f[2])[d]) / 3.0 + k_dist * scale * nf[d];
+            aims.push_back(aim);
+          }
+          for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = f[e], b = f[(e + 1) % 3];
+            const Tri g = boundary_face_across(a, b, sorted(f), st);
+            double ng[3], scale_g;
+            if (g[0] == kNoTet || !inward_unit_normal(g, ng, &scale_g)) continue;
+            double m[3], len = 0;
+            for (int d = 0; d < 3; ++d) {
+              m[d] = nf[d] + ng[d];
+              len += m[d] * m[d];
+            }
+            len = std::sqrt(len);
+            if (!(len > 1e-12)) continue;
+            const double size = std::min(scale, scale_g);
+            for (double k_dist : {0.5, 1.0, 2.0, 4.0, 8.0}) {
+              std::array<double, 3> aim;
+              for (int d = 0; d < 3; ++d) aim[d] = 0.5 * (T(a)[d] + T(b)[d]) + k_dist * size * m[d] / len;
+              valley.push_back(aim);
+            }
+          }
+        }
+      }
+      aims.insert(aims.end(), valley.begin(), valley.end());
     }
+    for (std::size_t k = 0; k < aims.size() && !grown; ++k) grown = grow_region(cluster, p, q, 1, false, aims[k].data());
     const auto t_patch = std::chrono::steady_clock::now();
     res_.seconds_growth += std::chrono::duration<double>(t_patch - t_grow).count();
     if (!grown) return false;

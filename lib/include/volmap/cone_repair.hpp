@@ -32,7 +32,8 @@ struct ConeRepairOptions {
   // G1 mouse star: 305 bad tets took 34 s without it.
   double time_limit_seconds = 0;
   // When the LP growth fails on a cluster with a face on ∂M: grow again towards fixed target points
-  // just inside that face (exact visibility), see cone_repair.cpp.
+  // just inside that face, then near its edges inside both it and the ∂M face across the edge
+  // (exact visibility), see cone_repair.cpp.
   bool aimed_growth = true;
 };
 
