@@ -13,6 +13,11 @@
 #   $B/volmap-run $D --groups G1 --method map --label map-fixed --method-args="--threads 1 --time-limit 30 --no-refine" --timeout 120 -j2 --out $O
 #   $B/volmap-run $D --groups G1 --method tlc --method-args="--threads 1 --time-limit 30" --timeout 120 -j2 --out $O
 #   $B/volmap-run table $O        # prints the table and writes $O/table.md (add --resume to continue a run)
+# Measured 2026-11-23 at 79dd9a0 with -j1 (one case at a time, 2-core machine, load ~1-3):
+#   map        100/100 certified (62 without refinement, 38 by B1 cone repair), growth -1.98 %..0 %,
+#              time median 3.34 s, max 16.0 s
+#   map-fixed   68/100 (--no-refine), time median 6.8 s, max 30.3 s
+#   tlc         58/100 (at 303fa9b; 47/80 on cube/tet/pyr/octa; the paper reports 63 %)
 # This script stays for quick CSV runs with any volmap-map flags.
 set -u
 bin=$1; data=$2; out=$3; shift 3
