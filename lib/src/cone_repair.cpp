@@ -80,6 +80,20 @@ bool simplex_max(int m, int n, std::vector<double>& A, std::vector<double>& b, s
 
 namespace {
 
+// Normal n = ((c − a)·scale) × ((b − a)·scale) of the outward face (a,b,c): it points to the tet's
+// side (the file's convention above). Returns |n| (0 for a face degenerate in double).
+double inward_face_normal(const double* a, const double* b, const double* c, double scale, double* n) {
+  double u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = (c[i] - a[i]) * scale;
+    v[i] = (b[i] - a[i]) * scale;
+  }
+  n[0] = u[1] * v[2] - u[2] * v[1];
+  n[1] = u[2] * v[0] - u[0] * v[2];
+  n[2] = u[0] * v[1] - u[1] * v[0];
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 // Chebyshev centre of the kernel LP (see the file comment), in double. Faces whose normal vanishes in
 // double are left out (the exact verification of the caller rejects them). Returns false when the LP
 // could not be set up or solved; otherwise q is the max-min point and *slack the optimal s in the
@@ -106,15 +120,8 @@ bool chebyshev_point(const std::vector<double>& tri, double* q, double* slack) {
     const double* a = &tri[9 * f];
     const double* bb = a + 3;
     const double* c = a + 6;
-    double u[3], v[3], nn[3];
-    for (int i = 0; i < 3; ++i) {
-      u[i] = (c[i] - a[i]) * inv;
-      v[i] = (bb[i] - a[i]) * inv;
-    }
-    nn[0] = u[1] * v[2] - u[2] * v[1];
-    nn[1] = u[2] * v[0] - u[0] * v[2];
-    nn[2] = u[0] * v[1] - u[1] * v[0];
-    const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+    double nn[3];
+    const double len = inward_face_normal(a, bb, c, inv, nn);
     if (!(len > 0)) continue;  // degenerate in double: no strict kernel (left to the exact check)
     // n̂·(q' − a') ≥ s  ⇔  −n̂·q' + s' ≤ −n̂·a' + S0   (q' = (q − lo)/diag, s' = s + S0)
     double rhs = S0;
@@ -617,13 +624,8 @@ class ConeRepairer {
         const double* a = &tri[9 * f];
         const double* b = a + 3;
         const double* c = a + 6;
-        double u[3], v[3];
-        for (int i = 0; i < 3; ++i) {
-          u[i] = c[i] - a[i];
-          v[i] = b[i] - a[i];
-        }
-        const double nn[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-        const double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+        double nn[3];
+        const double len = inward_face_normal(a, b, c, 1.0, nn);
         double d = -std::numeric_limits<double>::max();
         if (len > 0) d = (nn[0] * (pt[0] - a[0]) + nn[1] * (pt[1] - a[1]) + nn[2] * (pt[2] - a[2])) / len;
         if (fp_.orient3d(a, b, c, pt) > 0 && d <= 0) d = std::numeric_limits<double>::min();
@@ -742,16 +744,7 @@ class ConeRepairer {
 
   // Unit normal of the ∂M face f pointing into M (target space) and the face's size sqrt(2 area).
   bool inward_unit_normal(const Tri& f, double* n, double* size) const {
-    const double *a = T(f[0]), *b = T(f[1]), *c = T(f[2]);
-    double u[3], v[3];
-    for (int d = 0; d < 3; ++d) {
-      u[d] = c[d] - a[d];
-      v[d] = b[d] - a[d];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double len = inward_face_normal(T(f[0]), T(f[1]), T(f[2]), 1.0, n);
     if (!(len > 0)) return false;
     for (int d = 0; d < 3; ++d) n[d] /= len;
     *size = std::sqrt(len);

@@ -174,9 +174,6 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     bad = stage_done("ffm-local", t0);
     if (bad == 0) r.certified_by = "ffm-local";
   };
-  // Early B1: as soon as a cascade stage leaves few non-positive tets, try the cone repair (it is
-  // cheap — milliseconds on G1 — and leaves a cluster untouched when it fails), instead of spending
-  // the cascade's whole time share on the last few tets (bone cube/star: 9.8 s → under 2 s).
   // B1 cone repair of every cluster, within what is left of the growth budget and half the time left.
   auto run_cone_repair = [&](const std::string& name) {
     t0 = elapsed();
@@ -188,6 +185,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     r.cone_patches += cr.patches;
     if (cr.patches > 0) r.refined = true;
     bad = stage_done(name, t0);
+    if (bad == 0) r.certified_by = "cone-repair";
     return cr;
   };
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, given `share` of the time left.
@@ -202,12 +200,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     if (bad == 0) r.certified_by = name;
     link_kernel();
   };
+  // Early B1: as soon as a cascade stage leaves few non-positive tets, try the cone repair (it leaves
+  // a cluster untouched when it fails) instead of spending the cascade's whole time share on the last
+  // few tets (bone cube/star: 9.8 s → under 2 s). A failing attempt can cost seconds on large meshes,
+  // so it is not repeated at an unchanged count.
   std::size_t early_b1_stalled_at = std::size_t(-1);  // bad count of the last attempt that patched nothing
   auto try_b1 = [&](const char* after) {
     if (bad == 0 || !b1_rounds || bad > options.early_repair_max_bad || bad >= early_b1_stalled_at) return;
     const ConeRepairResult cr = run_cone_repair(std::string("cone-repair-after-") + after);
     if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at = bad;  // retry only after progress elsewhere
-    if (bad == 0) r.certified_by = "cone-repair";
   };
   // With refinement, once few tets are left the global FFM stages are skipped: the B1 rounds (cone
   // repair ↔ local FFM) finish such maps, while global FFM from a nearly valid map cost 2–7 s and was
@@ -259,15 +260,13 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
 
   // §7 B1 cone repair of what remains, in rounds: repair → link-kernel relocation → local FFM on the
   // repaired mesh (its connectivity changed) → repair again; when all stall, a small-lift TLC once,
-  // then a global FFM once. The net tet growth of B0 + B1 stays
-  // within max_growth · input tets.
+  // then a global FFM once. The net tet growth of B0 + B1 stays within max_growth · input tets.
   if (bad > 0 && b1_rounds) {
     phase_limit = options.time_limit_seconds;
     bool global_tried = false, tlc_retried = false;
     for (int round = 0; round < 8 && bad > 0 && !out_of_time(); ++round) {
       const std::size_t bad_before = bad;
       const ConeRepairResult cr = run_cone_repair("cone-repair");
-      if (bad == 0) r.certified_by = "cone-repair";
       link_kernel();
       if (bad == 0 || out_of_time()) break;
       // The repaired mesh is untangled locally first (the rest of the map is valid and stays

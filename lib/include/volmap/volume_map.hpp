@@ -4,8 +4,9 @@
 // initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
 // relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
 // global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
-// and local FFM → [with refinement] rounds of B1 cone repair (§7) → link-kernel → short FFM on the
-// repaired mesh → validity-preserving quality pass (§5).
+// and local FFM → [with refinement: B1 cone repair (§7) tried after every stage that leaves few bad
+// tets, global FFM skipped then] rounds of B1 → link-kernel → local FFM (small-lift TLC, then global
+// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only).
 // Each stage is judged by the exact count of non-positive tets and undone when it makes it worse.
 // A result is certified only when the exact check (orient3d > 0 on every tet, on the doubles
 // returned) passes.
