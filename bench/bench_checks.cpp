@@ -5,11 +5,11 @@
 // Reads ../shared/data in place; skips (with a message) when it is absent.
 #include <benchmark/benchmark.h>
 
-#include <volmap/io.hpp>
-#include <volmap/local_tables.hpp>
-#include <volmap/self_intersection.hpp>
-#include <volmap/tetmesh_checks.hpp>
-#include <volmap/topology.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/core/local_tables.hpp>
+#include <volmap/check/self_intersection.hpp>
+#include <volmap/check/tetmesh_checks.hpp>
+#include <volmap/core/topology.hpp>
 
 #include <filesystem>
 #include <string>

@@ -2,10 +2,10 @@
 // The G1 success table is produced by bench/run_map_g1.sh + bench/summarise_map_g1.py (see there).
 #include <benchmark/benchmark.h>
 
-#include <volmap/cone_repair.hpp>
-#include <volmap/ffm.hpp>
+#include <volmap/volume/cone_repair.hpp>
+#include <volmap/volume/ffm.hpp>
 
-#include "../tests/map_test_meshes.hpp"
+#include "../tests/support/map_test_meshes.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -6,11 +6,11 @@
 // Usage: bench_mesh [--quick] [google-benchmark flags]
 #include <benchmark/benchmark.h>
 
-#include <volmap/boundary_surface.hpp>
-#include <volmap/generate.hpp>
-#include <volmap/io.hpp>
-#include <volmap/tet_mesh.hpp>
-#include <volmap/topology.hpp>
+#include <volmap/surface/boundary_surface.hpp>
+#include <volmap/testing/generate.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/core/topology.hpp>
 
 #include <algorithm>
 #include <chrono>

@@ -3,10 +3,10 @@
 // bunny -> CUBE 2.2 s, -> STAR 2.7 s; surface_mapping_check bunny 2.7 s. Target: >= 20x faster.
 // Benchmarks measure the library calls (mesh already in memory) and, separately, reading the mesh.
 #include <benchmark/benchmark.h>
-#include <volmap/domain.hpp>
-#include <volmap/io.hpp>
-#include <volmap/surface_map.hpp>
-#include <volmap/surface_map_check.hpp>
+#include <volmap/surface/domain.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/surface/surface_map.hpp>
+#include <volmap/surface/surface_map_check.hpp>
 
 #include <filesystem>
 #include <string>

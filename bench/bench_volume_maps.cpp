@@ -4,13 +4,13 @@
 // degenerate tet); the metrics per tet. Real data is read in place from ../shared/data (skipped when
 // absent). Counters: *_ms are per-iteration averages; ns_per_tet = wall time / tets.
 #include <benchmark/benchmark.h>
-#include <volmap/io.hpp>
-#include <volmap/map_check.hpp>
-#include <volmap/metrics.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/check/map_check.hpp>
+#include <volmap/check/metrics.hpp>
 #include <volmap/predicates.hpp>
-#include <volmap/tutte3d.hpp>
+#include <volmap/volume/tutte3d.hpp>
 
-#include "../tests/vmap_test_util.hpp"
+#include "../tests/support/vmap_test_util.hpp"
 
 #include <algorithm>
 #include <chrono>

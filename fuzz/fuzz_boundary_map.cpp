@@ -1,7 +1,7 @@
 // libFuzzer target: boundary map reader + validation against a fixed one-tet mesh.
 #include "fuzz_common.hpp"
 
-#include <volmap/io.hpp>
+#include <volmap/io/io.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return volmap_fuzz::fuzz_reader(data, size, ".txt", [](const std::string& path) {

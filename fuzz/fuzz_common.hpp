@@ -3,7 +3,7 @@
 // returns or throws volmap::Error; any other exception, crash or sanitizer report is a finding.
 #pragma once
 
-#include <volmap/error.hpp>
+#include <volmap/core/error.hpp>
 
 #include <cstdint>
 #include <cstdio>

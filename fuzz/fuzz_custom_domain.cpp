@@ -3,7 +3,7 @@
 // lists match their node lists, and an Euler characteristic of 2.
 #include "fuzz_common.hpp"
 
-#include <volmap/domain.hpp>
+#include <volmap/surface/domain.hpp>
 
 #include <cmath>
 

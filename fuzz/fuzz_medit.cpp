@@ -1,7 +1,7 @@
 // libFuzzer target: Medit .mesh reader, then the writer and a re-read of what it wrote must agree.
 #include "fuzz_common.hpp"
 
-#include <volmap/io.hpp>
+#include <volmap/io/io.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return volmap_fuzz::fuzz_reader(data, size, ".mesh", [](const std::string& path) {

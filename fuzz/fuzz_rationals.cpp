@@ -2,7 +2,7 @@
 // writer and a re-read must give the same exact values.
 #include "fuzz_common.hpp"
 
-#include <volmap/io.hpp>
+#include <volmap/io/io.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;

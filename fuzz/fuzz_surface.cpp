@@ -3,7 +3,7 @@
 // range and finite coordinates (read_surface's contract) or throw volmap::Error.
 #include "fuzz_common.hpp"
 
-#include <volmap/io_surface.hpp>
+#include <volmap/io/io_surface.hpp>
 
 #include <cmath>
 

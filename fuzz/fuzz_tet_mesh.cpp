@@ -3,8 +3,8 @@
 // purpose); coordinates are a fixed small grid (topology is what is being fuzzed). The constructor
 // must either throw volmap::Error or produce a mesh whose check_invariants() passes and whose
 // to_data() gives the input arrays back.
-#include <volmap/error.hpp>
-#include <volmap/tet_mesh.hpp>
+#include <volmap/core/error.hpp>
+#include <volmap/core/tet_mesh.hpp>
 
 #include <cstdint>
 

@@ -2,8 +2,8 @@
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (g++), in build-asan/.
 #   scripts/sanitize.sh                 build everything, run ctest -LE long (the whole default suite;
 #                                       what CI runs, see .ci/run)
-#   scripts/sanitize.sh --subset        build the tools and the parser / mesh / predicate / bad-input
-#                                       tests only and run those binaries (quicker local check)
+#   scripts/sanitize.sh --subset        build the tools and the predicates / core / io / tools suites
+#                                       only and run those binaries (quicker local check)
 #   scripts/sanitize.sh [ctest args]    build everything, run ctest with these arguments
 # Any sanitizer report aborts the test that triggered it (UBSan is built with -fno-sanitize-recover,
 # ASan with abort_on_error), so a green run means no report. Prints the wall time of build and tests.
@@ -15,11 +15,9 @@ JOBS=${VOLMAP_JOBS:-$(nproc)}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
-# The CI subset: every file parser, the mesh structure, the predicates (also under FTZ|DAZ), the
-# tool-level bad-input corpus (which runs every tool under ASan) and the tool tests of IO and checks.
-SUBSET_TESTS=(test_error test_predicates test_predicates_ftz test_io_medit test_io_map test_io_vtk test_io_surface
-              test_io_fuzz test_io_boundary_faces test_io_convert_tool test_tet_mesh test_tet_mesh_edits
-              test_topology test_tetmesh_check test_domain test_bad_inputs)
+# The subset: the predicates (also under FTZ|DAZ), the mesh structure, every file parser and the
+# tool suite (bad-input corpus: every tool under ASan). Suites are tests/<wing>/ -> test_<wing>.
+SUBSET_TESTS=(test_predicates test_core test_io test_tools)
 
 start=$(date +%s)
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOLMAP_SANITIZE=ON -DVOLMAP_BUILD_BENCH=OFF >/dev/null
@@ -28,7 +26,7 @@ if [ "${1:-}" = --subset ]; then
   TOOLS=()
   for f in "$ROOT"/tools/volmap-*.cpp; do TOOLS+=("$(basename "$f" .cpp)"); done
   TESTS=()
-  for t in "${SUBSET_TESTS[@]}"; do [ -f "$ROOT/tests/$t.cpp" ] && TESTS+=("$t"); done
+  for t in "${SUBSET_TESTS[@]}"; do [ -d "$ROOT/tests/${t#test_}" ] && TESTS+=("$t"); done
   cmake --build "$BUILD" -j"$JOBS" --target "${TOOLS[@]}" "${TESTS[@]}" >/dev/null
   built=$(date +%s)
   echo "== sanitizer build (subset: tools + ${#TESTS[@]} test executables): $((built - start)) s"

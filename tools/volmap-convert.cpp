@@ -3,9 +3,9 @@
 // (case-insensitive), keeping vertex order, tet order and each tet's vertex order; Medit labels are
 // carried along. Exit codes: 0 ok, 2 usage or bad input (one-line reason on stderr). The output is
 // written atomically: on any error no output file appears.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/io.hpp>
+#include <volmap/io/io.hpp>
 
 #include <chrono>
 

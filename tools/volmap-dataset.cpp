@@ -7,13 +7,13 @@
 // is one of the volmap-* tools run as a child process; a surface that fails any step is skipped and
 // the reason goes to <dataset>/<group>_log.txt. Maps made before a later domain refines the mesh are
 // carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/atomic_file.hpp>
-#include <volmap/dataset.hpp>
-#include <volmap/io.hpp>
-#include <volmap/map_extension.hpp>
-#include <volmap/process.hpp>
+#include <volmap/io/atomic_file.hpp>
+#include "support/dataset.hpp"
+#include <volmap/io/io.hpp>
+#include <volmap/surface/map_extension.hpp>
+#include "support/process.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -7,10 +7,10 @@
 // additionally every input tet is positive and (with --boundary) every boundary vertex sits exactly
 // on the map's position. With rationals files the check runs on exact rational coordinates; a missing
 // side is converted exactly from the mesh's doubles. Exit 0 certified, 1 not, 2 bad input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/io.hpp>
-#include <volmap/map_check.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/check/map_check.hpp>
 
 #include <chrono>
 #include <cstdio>

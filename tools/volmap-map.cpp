@@ -18,12 +18,12 @@
 // Certification re-reads the written files and runs the exact check on exactly those numbers.
 // Exit: 0 certified; 1 ran but not injective (out.mesh is STILL written with the best map found, so
 // it can be inspected; it must not be used as a valid map); 2 usage or bad input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/boundary_faces.hpp>
-#include <volmap/io.hpp>
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/io/io.hpp>
 #include <volmap/predicates.hpp>
-#include <volmap/volume_map.hpp>
+#include <volmap/volume/volume_map.hpp>
 
 #include <cstdio>
 

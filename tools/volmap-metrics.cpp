@@ -10,11 +10,11 @@
 // Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
 // Exit 0 when computed (also for maps with inverted tets: this tool measures, it does not certify),
 // 2 on bad or mismatched input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/atomic_file.hpp>
-#include <volmap/io.hpp>
-#include <volmap/metrics.hpp>
+#include <volmap/io/atomic_file.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/check/metrics.hpp>
 
 #include <chrono>
 #include <cmath>

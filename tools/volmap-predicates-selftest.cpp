@@ -8,7 +8,7 @@
 #include <volmap/predicates.hpp>
 
 #include "../predicates/testing/oracle.hpp"
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
 #include <chrono>
 #include <cmath>

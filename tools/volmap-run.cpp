@@ -9,12 +9,12 @@
 //   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
 //       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
 // Results: <out>/results.jsonl, one JSON object per case (see lib benchmark_runner.hpp).
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/atomic_file.hpp>
-#include <volmap/benchmark_report.hpp>
-#include <volmap/benchmark_runner.hpp>
-#include <volmap/dataset.hpp>
+#include <volmap/io/atomic_file.hpp>
+#include "support/benchmark_report.hpp"
+#include "support/benchmark_runner.hpp"
+#include "support/dataset.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,9 +1,9 @@
 // volmap-shapes — write the built-in genus-0 demo surfaces (procedural, no downloads).
 //   volmap-shapes <out_dir> [--names ellipsoid,bumpy,...] [--subdivisions 3] [--format off] [--json]
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/io_surface.hpp>
-#include <volmap/shapes.hpp>
+#include <volmap/io/io_surface.hpp>
+#include "support/shapes.hpp"
 
 #include <filesystem>
 

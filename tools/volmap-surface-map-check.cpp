@@ -1,12 +1,12 @@
 // volmap-surface-map-check <in.mesh> <map.txt> [--domain name|file] [--json]
 // The exact surface-map sanity check (see <volmap/surface_map_check.hpp>). Exit 0 = valid,
 // 1 = check failed (inverted/degenerate cones, coverage, off-domain points, corners), 2 = bad input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/domain.hpp>
-#include <volmap/io.hpp>
-#include <volmap/surface_map.hpp>
-#include <volmap/surface_map_check.hpp>
+#include <volmap/surface/domain.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/surface/surface_map.hpp>
+#include <volmap/surface/surface_map_check.hpp>
 
 #include <chrono>
 #include <iostream>

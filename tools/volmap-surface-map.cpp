@@ -7,11 +7,11 @@
 // checked exactly again (same check, tolerance for 6-decimal points) and refused (exit 1, nothing
 // written) when rounding breaks it.
 // Exit 0 = map written; 1 = mapping or verification failed (nothing written); 2 = bad input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/domain.hpp>
-#include <volmap/io.hpp>
-#include <volmap/surface_map.hpp>
+#include <volmap/surface/domain.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/surface/surface_map.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -11,12 +11,12 @@
 // --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order).
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/atomic_file.hpp>
-#include <volmap/io.hpp>
-#include <volmap/io_surface.hpp>
-#include <volmap/tetmesh_checks.hpp>
+#include <volmap/io/atomic_file.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/io/io_surface.hpp>
+#include <volmap/check/tetmesh_checks.hpp>
 
 
 #include <algorithm>

@@ -2,11 +2,11 @@
 // Checks the surface (closed, manifold, one component, genus 0, no self-intersections), tetrahedralizes it with TetGen
 // (p q<quality> Y, boundary preserved) and writes a VOLMAP-positive Medit mesh.
 // Exit 0 = written; 1 = surface refused (topology) or TetGen failed (self-intersections, ...); 2 = usage/IO.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/io.hpp>
-#include <volmap/tetmesh_checks.hpp>
-#include <volmap/tetrahedralize.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/check/tetmesh_checks.hpp>
+#include <volmap/tetgen/tetrahedralize.hpp>
 
 #include <chrono>
 #include <iostream>

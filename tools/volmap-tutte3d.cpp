@@ -4,11 +4,11 @@
 // writes the map atomically (even when it inverts tets: it is a baseline), then re-reads the written
 // file and certifies it exactly (orient3d > 0 for every tet in the input's vertex order, boundary
 // vertices bit-identical to the map). Exit 0 iff certified injective, 1 otherwise, 2 on bad input.
-#include "tool_common.hpp"
+#include "support/tool_common.hpp"
 
-#include <volmap/io.hpp>
-#include <volmap/map_check.hpp>
-#include <volmap/tutte3d.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/check/map_check.hpp>
+#include <volmap/volume/tutte3d.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -11,13 +11,13 @@
 // as VOLMAP_VIEW_INSTALLED_BUNDLE) when it exists, else the path of this source tree baked in at
 // compile time (<repo>/viewer/dist/viewer.js, from __FILE__: the build tree).
 // Exit: 0 ok, 2 usage / bad input / bundle missing.
-#include "tool_common.hpp"
-#include "view_metrics_adapter.hpp"
+#include "support/tool_common.hpp"
+#include "support/view_metrics_adapter.hpp"
 
-#include <volmap/boundary_faces.hpp>
-#include <volmap/io.hpp>
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/io/io.hpp>
 #include <volmap/predicates.hpp>
-#include <volmap/view_export.hpp>
+#include "support/view_export.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -4,7 +4,7 @@
 // game engines) or another rounding mode. Every public entry point therefore checks MXCSR (one
 // stmxcsr, predicted branch) and, when it is not the default, re-enters itself under the default
 // environment and restores the caller's afterwards, so results stay exact in every environment.
-// Regression test: tests/test_predicates_ftz.cpp. Non-x86 targets: no check (no MXCSR).
+// Regression test: tests/predicates/test_predicates_ftz.cpp. Non-x86 targets: no check (no MXCSR).
 #pragma once
 
 #if defined(__SSE2__)

@@ -1,5 +1,5 @@
 // oracle.hpp — independent exact oracle and hard-case generators for testing volmap predicates.
-// Used by tests/test_predicates*.cpp, bench/bench_predicates.cpp and tools/volmap-predicates-selftest.cpp
+// Used by tests/predicates/test_predicates*.cpp, bench/bench_predicates.cpp and tools/volmap-predicates-selftest.cpp
 // only (not installed, not part of the predicates library).
 //
 // The oracle never calls volmap code: every coordinate is converted exactly to a GMP rational (or a
@@ -55,7 +55,7 @@ T laplace_det(const T* m, int n, int stride, const int* cols) {
 
 // GMP's double -> rational conversion uses floating-point arithmetic, which MXCSR flush-to-zero /
 // denormals-are-zero would corrupt (subnormals read as 0): the oracle converts in the default
-// environment whatever the caller's is (tests/test_predicates_ftz.cpp, VOLMAP_TEST_FTZ_DAZ=1 runs).
+// environment whatever the caller's is (tests/predicates/test_predicates_ftz.cpp, VOLMAP_TEST_FTZ_DAZ=1 runs).
 struct DefaultFpEnvironment {
 #if defined(__SSE2__)
   unsigned saved = _mm_getcsr();

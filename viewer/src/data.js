@@ -2,7 +2,7 @@
 //   <script type="application/json" id="volmap-meta">  : layout + figures computed in C++
 //   <script type="application/octet-stream" id="volmap-data"> : one base64 blob of little-endian arrays
 // meta.arrays[name] = {type: 'f32'|'u32'|'i32'|'u8', offset (bytes, 4-aligned), count}.
-// Conventions (see lib/include/volmap/view_export.hpp): vertex ids 0-based, tets 4 ids each in file
+// Conventions (see tools/support/view_export.hpp): vertex ids 0-based, tets 4 ids each in file
 // order (VOLMAP-positive: orient3d(v0,v1,v2,v3) > 0), per-tet flags decided exactly in C++.
 
 const CTORS = { f32: Float32Array, u32: Uint32Array, i32: Int32Array, u8: Uint8Array };

@@ -1,0 +1,493 @@
+// self_intersection.cpp — exact triangle-surface self-intersection test (see self_intersection.hpp).
+//
+// Pipeline: validate ids/coordinates; flag degenerate triangles; find coincident vertices by sorting
+// positions; build a flat bounding-volume hierarchy over the triangle boxes (Morton order, halved
+// ranges, nodes in one array, no per-node heap storage); for every triangle, in parallel blocks,
+// query the BVH for the triangles after it (in BVH order) whose closed boxes overlap and run the
+// exact pair test chosen by how many vertex ids the two share. Box tests compare doubles only
+// (exact); every sign is an exact orient3d/orient2d, called unchecked inside one FpEnvironmentScope
+// per block of work (one MXCSR check per block instead of per call; predicates.hpp).
+//
+// Why testing the six edges suffices for two closed triangles (non-adjacent case): their intersection
+// is a compact convex set; an extreme point of it cannot lie in the relative interior of both
+// triangles (a neighbourhood there would extend the intersection), so it lies on an edge of one
+// triangle and in the other. Hence T1 ∩ T2 ≠ ∅ iff some edge of one meets the other triangle.
+#include <volmap/check/self_intersection.hpp>
+
+#include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+namespace volmap {
+namespace {
+
+// ---------------------------------------------------------------- 2D helpers on a projection ----
+// A projection drops one coordinate: axes (kAxes[k][0], kAxes[k][1]).
+constexpr int kAxes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+
+struct P2 {
+  double v[2];
+};
+inline P2 project(const double* p, int k) { return P2{{p[kAxes[k][0]], p[kAxes[k][1]]}}; }
+inline int o2(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c) {
+  return fp.orient2d(a.v, b.v, c.v);
+}
+
+// A projection under which triangle abc stays non-degenerate (so it is injective on abc's plane),
+// or -1 when abc is degenerate. The candidate with the largest double normal component is tried
+// first; the choice is then confirmed by the exact orient2d.
+int projection_for(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                   int* orientation_out = nullptr) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double n[3] = {std::fabs(uy * vz - uz * vy), std::fabs(uz * vx - ux * vz), std::fabs(ux * vy - uy * vx)};
+  // Dropping coordinate 2 -> axes (0,1) = k 0; dropping 0 -> (1,2) = k 1; dropping 1 -> (2,0) = k 2.
+  int order[3] = {0, 1, 2};
+  const double weight[3] = {n[2], n[0], n[1]};
+  std::sort(order, order + 3, [&](int x, int y) { return weight[x] > weight[y]; });
+  for (int k : order) {
+    const int o = o2(fp, project(a, k), project(b, k), project(c, k));
+    if (o != 0) {
+      if (orientation_out) *orientation_out = o;
+      return k;
+    }
+  }
+  return -1;
+}
+
+// x, known collinear with segment pq, lies on the closed segment pq.
+inline bool on_segment_collinear(const P2& p, const P2& q, const P2& x) {
+  for (int i = 0; i < 2; ++i) {
+    if (x.v[i] < std::min(p.v[i], q.v[i]) || x.v[i] > std::max(p.v[i], q.v[i])) return false;
+  }
+  return true;
+}
+
+// Closed segments pq and ab share a point (both non-degenerate).
+bool segments_intersect_2d(const FpEnvironmentScope& fp, const P2& p, const P2& q, const P2& a, const P2& b) {
+  const int d1 = o2(fp, p, q, a), d2 = o2(fp, p, q, b);
+  if ((d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0)) return false;
+  const int d3 = o2(fp, a, b, p), d4 = o2(fp, a, b, q);
+  if ((d3 > 0 && d4 > 0) || (d3 < 0 && d4 < 0)) return false;
+  if (d1 != 0 || d2 != 0) return true;  // not all collinear: the straddles above imply a crossing
+  // All four collinear: overlap iff an endpoint of one lies on the other.
+  return on_segment_collinear(p, q, a) || on_segment_collinear(p, q, b) || on_segment_collinear(a, b, p) ||
+         on_segment_collinear(a, b, q);
+}
+
+// x in the closed triangle abc of orientation o (!= 0).
+inline bool point_in_triangle_2d(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c, int o,
+                                 const P2& x) {
+  return o * o2(fp, a, b, x) >= 0 && o * o2(fp, b, c, x) >= 0 && o * o2(fp, c, a, x) >= 0;
+}
+
+// x in the closed cone at apex a spanned by rays ab and ac (o = orient2d(a,b,c) != 0); x != a.
+inline bool point_in_cone_2d(const FpEnvironmentScope& fp, const P2& a, const P2& b, const P2& c, int o, const P2& x) {
+  return o * o2(fp, a, b, x) >= 0 && o * o2(fp, a, x, c) >= 0;
+}
+
+// Closed segment pq meets the closed triangle abc, all coplanar, in projection k where abc has
+// orientation o.
+bool coplanar_segment_triangle(const FpEnvironmentScope& fp, const double* p, const double* q, const double* a,
+                               const double* b, const double* c, int k, int o) {
+  const P2 P = project(p, k), Q = project(q, k), A = project(a, k), B = project(b, k), C = project(c, k);
+  if (point_in_triangle_2d(fp, A, B, C, o, P) || point_in_triangle_2d(fp, A, B, C, o, Q)) return true;
+  const bool pq_degenerate = P.v[0] == Q.v[0] && P.v[1] == Q.v[1];
+  if (pq_degenerate) return false;  // a point outside the triangle
+  return segments_intersect_2d(fp, P, Q, A, B) || segments_intersect_2d(fp, P, Q, B, C) ||
+         segments_intersect_2d(fp, P, Q, C, A);
+}
+
+inline bool strictly_same_side(int s0, int s1, int s2) {
+  return (s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0);
+}
+
+// Segment pq against non-degenerate triangle abc, given op = orient3d(a,b,c,p), oq = orient3d(a,b,c,q).
+bool segment_triangle_with_signs(const FpEnvironmentScope& fp, const double* p, const double* q, const double* a,
+                                 const double* b, const double* c, int op, int oq) {
+  if ((op > 0 && oq > 0) || (op < 0 && oq < 0)) return false;
+  if (op == 0 && oq == 0) {
+    int o = 0;
+    const int k = projection_for(fp, a, b, c, &o);
+    if (k < 0) return false;  // caller guarantees non-degenerate; be safe
+    return coplanar_segment_triangle(fp, p, q, a, b, c, k, o);
+  }
+  // The line pq is transversal to the plane and the segment reaches it: it meets the closed triangle
+  // iff the crossing point is on the inner side (or on) of all three edge lines.
+  const int s1 = fp.orient3d(p, q, a, b), s2 = fp.orient3d(p, q, b, c), s3 = fp.orient3d(p, q, c, a);
+  const bool has_pos = s1 > 0 || s2 > 0 || s3 > 0;
+  const bool has_neg = s1 < 0 || s2 < 0 || s3 < 0;
+  return !(has_pos && has_neg);
+}
+
+// ---------------------------------------------------------------- pair tests by shared ids -----
+// t = (a,b,c), u = (a,b,d): share edge ab.
+bool shared_edge_pair(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                      const double* d) {
+  if (fp.orient3d(a, b, c, d) != 0) return false;  // distinct planes meet in line ab only
+  int o = 0;
+  const int k = projection_for(fp, a, b, c, &o);
+  if (k < 0) return false;
+  const int od = o2(fp, project(a, k), project(b, k), project(d, k));
+  return o * od > 0;  // d on c's side of ab: the triangles overlap (a fold)
+}
+
+// t = (a,b,c), u = (a,d,e): share vertex a only.
+bool shared_vertex_pair(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                        const double* d, const double* e) {
+  const int sd = fp.orient3d(a, b, c, d), se = fp.orient3d(a, b, c, e);
+  if ((sd > 0 && se > 0) || (sd < 0 && se < 0)) return false;  // u touches t's plane only at a
+  if (sd == 0 || se == 0) {
+    int o = 0;
+    const int k = projection_for(fp, a, b, c, &o);
+    if (k < 0) return false;
+    const P2 A = project(a, k), B = project(b, k), C = project(c, k), D = project(d, k), E = project(e, k);
+    if (sd == 0 && se == 0) {
+      // Coplanar: the corner cones at a overlap beyond a iff a bounding ray of one lies in the other.
+      const int ou = o2(fp, A, D, E);
+      if (ou == 0) return false;  // u degenerate: excluded by the caller
+      return point_in_cone_2d(fp, A, B, C, o, D) || point_in_cone_2d(fp, A, B, C, o, E) ||
+             point_in_cone_2d(fp, A, D, E, ou, B) || point_in_cone_2d(fp, A, D, E, ou, C);
+    }
+    // u meets t's plane in segment a-d (or a-e): it enters t iff that ray is in t's corner cone.
+    return point_in_cone_2d(fp, A, B, C, o, sd == 0 ? D : E);
+  }
+  // d and e strictly on opposite sides: u meets t's plane in segment aX, X on de. aX enters t iff X
+  // lies in t's corner cone at a, i.e. on the inner side (or on) both edge lines through a. For a
+  // transversal line de, orient3d(d,e,p,q) has the sign of se times the side of X w.r.t. line pq
+  // (identity: orient3d(d,e,a,b) + orient3d(d,e,b,c) + orient3d(d,e,c,a) = orient3d(a,b,c,e) -
+  // orient3d(a,b,c,d)); testing both signs against se rules out the vertical angle.
+  const int s1 = fp.orient3d(d, e, a, b), s2 = fp.orient3d(d, e, c, a);
+  return s1 * se >= 0 && s2 * se >= 0;
+}
+
+// ---------------------------------------------------------------- BVH ---------------------------
+struct Box {
+  double lo[3], hi[3];
+};
+inline bool overlap(const Box& x, const Box& y) {
+  return x.lo[0] <= y.hi[0] && y.lo[0] <= x.hi[0] && x.lo[1] <= y.hi[1] && y.lo[1] <= x.hi[1] &&
+         x.lo[2] <= y.hi[2] && y.lo[2] <= x.hi[2];
+}
+struct Node {
+  Box box;
+  std::uint32_t begin, end;  // the node's triangles are order[begin, end)
+  std::uint32_t left;        // inner: left child (right = left + 1); leaf: 0 (the root is nobody's child)
+};
+constexpr std::uint32_t kLeafSize = 4;
+
+struct Bvh {
+  std::vector<Node> nodes;
+  std::vector<std::uint32_t> order;  // triangle ids, leaves refer to ranges of it
+  std::vector<Box> leaf_boxes;       // boxes in `order` order (cache-friendly leaf scans)
+};
+
+// Spreads the low 10 bits of x so that there are two zero bits between consecutive bits.
+inline std::uint32_t spread_bits(std::uint32_t x) {
+  x &= 0x3FFu;
+  x = (x | (x << 16)) & 0x030000FFu;
+  x = (x | (x << 8)) & 0x0300F00Fu;
+  x = (x | (x << 4)) & 0x030C30C3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
+// Triangles are ordered along a Morton (Z-order) curve of their box centres (one sort of 64-bit
+// keys), the tree halves position ranges top-down, and boxes are merged bottom-up: O(n log n) for
+// the sort, O(n) for the rest. Children are created after their parent, so a reverse sweep over the
+// node array sees every child before its parent.
+Bvh build_bvh(const std::vector<Box>& boxes) {
+  const std::size_t n = boxes.size();
+  Bvh bvh;
+  bvh.order.resize(n);
+  if (n == 0) return bvh;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = boxes[0].lo[k];
+    hi[k] = boxes[0].hi[k];
+  }
+  for (const Box& box : boxes)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], box.lo[k]);
+      hi[k] = std::max(hi[k], box.hi[k]);
+    }
+  double scale[3];
+  for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? 1023.0 / (hi[k] - lo[k]) : 0.0;
+  std::vector<std::uint64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
+      const double q = std::min(1023.0, std::max(0.0, (c - lo[k]) * scale[k]));
+      code |= spread_bits(std::uint32_t(q)) << k;
+    }
+    keys[i] = (std::uint64_t(code) << 32) | std::uint64_t(i);
+  }
+  std::sort(keys.begin(), keys.end());
+  bvh.leaf_boxes.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    bvh.order[i] = std::uint32_t(keys[i] & 0xFFFFFFFFu);
+    bvh.leaf_boxes[i] = boxes[bvh.order[i]];
+  }
+  bvh.nodes.reserve(2 * (n / kLeafSize + 1));
+  bvh.nodes.push_back(Node{Box{}, 0, std::uint32_t(n), 0});
+  for (std::size_t at = 0; at < bvh.nodes.size(); ++at) {  // top-down: split ranges in half
+    const std::uint32_t begin = bvh.nodes[at].begin, end = bvh.nodes[at].end;
+    if (end - begin <= kLeafSize) continue;
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const std::uint32_t left = std::uint32_t(bvh.nodes.size());
+    bvh.nodes[at].left = left;
+    bvh.nodes.push_back(Node{Box{}, begin, mid, 0});
+    bvh.nodes.push_back(Node{Box{}, mid, end, 0});
+  }
+  for (std::size_t at = bvh.nodes.size(); at-- > 0;) {  // bottom-up boxes
+    Node& node = bvh.nodes[at];
+    if (node.left == 0) {
+      node.box = bvh.leaf_boxes[node.begin];
+      for (std::uint32_t i = node.begin + 1; i < node.end; ++i)
+        for (int k = 0; k < 3; ++k) {
+          node.box.lo[k] = std::min(node.box.lo[k], bvh.leaf_boxes[i].lo[k]);
+          node.box.hi[k] = std::max(node.box.hi[k], bvh.leaf_boxes[i].hi[k]);
+        }
+    } else {
+      const Box& l = bvh.nodes[node.left].box;
+      const Box& r = bvh.nodes[node.left + 1].box;
+      for (int k = 0; k < 3; ++k) {
+        node.box.lo[k] = std::min(l.lo[k], r.lo[k]);
+        node.box.hi[k] = std::max(l.hi[k], r.hi[k]);
+      }
+    }
+  }
+  return bvh;
+}
+
+// Per-block findings, merged in block order so the reported lists are deterministic.
+struct BlockResult {
+  std::size_t pairs = 0;
+  std::size_t candidates = 0;
+  std::vector<TrianglePair> smallest;
+};
+
+inline bool pair_less(const TrianglePair& x, const TrianglePair& y) {
+  return x.first != y.first ? x.first < y.first : x.second < y.second;
+}
+
+void keep_smallest(std::vector<TrianglePair>& list, std::size_t cap) {
+  std::sort(list.begin(), list.end(), pair_less);
+  if (list.size() > cap) list.resize(cap);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ public primitives ----------
+// Each public primitive checks the floating-point environment once (FpEnvironmentScope) and runs
+// the unchecked predicates; the driver below opens one scope per block of queries instead.
+namespace {
+
+bool triangles_intersect_in(const FpEnvironmentScope& fp, const double* a, const double* b, const double* c,
+                            const double* d, const double* e, const double* f) {
+  const int sd = fp.orient3d(a, b, c, d), se = fp.orient3d(a, b, c, e), sf = fp.orient3d(a, b, c, f);
+  if (strictly_same_side(sd, se, sf)) return false;
+  const int sa = fp.orient3d(d, e, f, a), sb = fp.orient3d(d, e, f, b), sc = fp.orient3d(d, e, f, c);
+  if (strictly_same_side(sa, sb, sc)) return false;
+  return segment_triangle_with_signs(fp, a, b, d, e, f, sa, sb) ||
+         segment_triangle_with_signs(fp, b, c, d, e, f, sb, sc) ||
+         segment_triangle_with_signs(fp, c, a, d, e, f, sc, sa) ||
+         segment_triangle_with_signs(fp, d, e, a, b, c, sd, se) ||
+         segment_triangle_with_signs(fp, e, f, a, b, c, se, sf) ||
+         segment_triangle_with_signs(fp, f, d, a, b, c, sf, sd);
+}
+
+bool triangle_pair_intersects_in(const FpEnvironmentScope& fp, const double* xyz, const std::uint32_t* t,
+                                 const std::uint32_t* u) {
+  // Which corners of t appear in u.
+  int in_u[3] = {-1, -1, -1};
+  int shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (t[i] == u[j]) {
+        in_u[i] = j;
+        ++shared;
+      }
+  auto P = [&](std::uint32_t v) { return xyz + 3 * std::size_t(v); };
+  if (shared >= 3) return true;  // the same triangle twice
+  if (shared == 0) return triangles_intersect_in(fp, P(t[0]), P(t[1]), P(t[2]), P(u[0]), P(u[1]), P(u[2]));
+  if (shared == 2) {
+    int c = 0;
+    while (in_u[c] >= 0) ++c;  // t's corner not in u
+    int d = 0;
+    while (u[d] == t[(c + 1) % 3] || u[d] == t[(c + 2) % 3]) ++d;
+    return shared_edge_pair(fp, P(t[(c + 1) % 3]), P(t[(c + 2) % 3]), P(t[c]), P(u[d]));
+  }
+  int a = 0;
+  while (in_u[a] < 0) ++a;
+  const int j = in_u[a];
+  return shared_vertex_pair(fp, P(t[a]), P(t[(a + 1) % 3]), P(t[(a + 2) % 3]), P(u[(j + 1) % 3]), P(u[(j + 2) % 3]));
+}
+
+}  // namespace
+
+bool triangle_is_degenerate(const double* a, const double* b, const double* c) {
+  const FpEnvironmentScope fp;
+  return projection_for(fp, a, b, c) < 0;
+}
+
+bool segment_intersects_triangle(const double* p, const double* q, const double* a, const double* b,
+                                 const double* c) {
+  const FpEnvironmentScope fp;
+  return segment_triangle_with_signs(fp, p, q, a, b, c, fp.orient3d(a, b, c, p), fp.orient3d(a, b, c, q));
+}
+
+bool triangles_intersect(const double* a, const double* b, const double* c, const double* d, const double* e,
+                         const double* f) {
+  const FpEnvironmentScope fp;
+  return triangles_intersect_in(fp, a, b, c, d, e, f);
+}
+
+bool triangle_pair_intersects(const double* xyz, const std::uint32_t* t, const std::uint32_t* u) {
+  const FpEnvironmentScope fp;
+  return triangle_pair_intersects_in(fp, xyz, t, u);
+}
+
+// ------------------------------------------------------------------ driver ---------------------
+SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t num_vertices,
+                                               const std::uint32_t* tris, std::size_t num_tris,
+                                               const SelfIntersectionOptions& options) {
+  SelfIntersectionResult result;
+  if (num_tris >= (std::size_t(1) << 32))
+    throw Error(ErrorKind::Unsupported, "", 0, "self-intersection test: more than 2^32 triangles");
+  // Validate ids and referenced coordinates.
+  std::vector<std::uint8_t> referenced(num_vertices, 0);
+  for (std::size_t i = 0; i < 3 * num_tris; ++i) {
+    if (tris[i] >= num_vertices)
+      throw Error(ErrorKind::BadInput, "", 0,
+                  "triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(tris[i]) +
+                      " but there are " + std::to_string(num_vertices) + " vertices");
+    referenced[tris[i]] = 1;
+  }
+  std::vector<std::uint32_t> used;
+  used.reserve(num_vertices);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    if (!referenced[v]) continue;
+    const double* p = xyz + 3 * v;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw Error(ErrorKind::BadInput, "", 0, "vertex " + std::to_string(v) + " has a non-finite coordinate");
+    used.push_back(std::uint32_t(v));
+  }
+  const std::size_t cap = options.max_reported;
+  const bool parallel = options.parallel && num_tris >= 2048;
+
+  // Coincident vertices: sort referenced ids by position; equal neighbours coincide.
+  std::sort(used.begin(), used.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const double *p = xyz + 3 * std::size_t(x), *q = xyz + 3 * std::size_t(y);
+    if (p[0] != q[0]) return p[0] < q[0];
+    if (p[1] != q[1]) return p[1] < q[1];
+    if (p[2] != q[2]) return p[2] < q[2];
+    return x < y;
+  });
+  for (std::size_t i = 1; i < used.size(); ++i) {
+    const double *p = xyz + 3 * std::size_t(used[i - 1]), *q = xyz + 3 * std::size_t(used[i]);
+    if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
+      ++result.coincident_vertices;
+      if (result.first_coincident.size() < cap) result.first_coincident.emplace_back(used[i - 1], used[i]);
+    }
+  }
+
+  // Boxes and degenerate triangles.
+  std::vector<Box> boxes(num_tris);
+  std::vector<std::uint8_t> degenerate(num_tris, 0);
+  auto prepare = [&](std::size_t begin, std::size_t end) {
+    const FpEnvironmentScope fp;  // per block: MXCSR is per thread
+    for (std::size_t t = begin; t < end; ++t) {
+      const std::uint32_t* tri = tris + 3 * t;
+      const double *a = xyz + 3 * std::size_t(tri[0]), *b = xyz + 3 * std::size_t(tri[1]), *c = xyz + 3 * std::size_t(tri[2]);
+      Box& box = boxes[t];
+      for (int k = 0; k < 3; ++k) {
+        box.lo[k] = std::min({a[k], b[k], c[k]});
+        box.hi[k] = std::max({a[k], b[k], c[k]});
+      }
+      degenerate[t] = (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || projection_for(fp, a, b, c) < 0) ? 1 : 0;
+    }
+  };
+  if (parallel)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_tris, 2048),
+                      [&](const tbb::blocked_range<std::size_t>& r) { prepare(r.begin(), r.end()); });
+  else
+    prepare(0, num_tris);
+  for (std::size_t t = 0; t < num_tris; ++t) {
+    if (!degenerate[t]) continue;
+    ++result.degenerate_triangles;
+    if (result.first_degenerate.size() < cap) result.first_degenerate.push_back(std::uint32_t(t));
+  }
+
+  const Bvh bvh = build_bvh(boxes);
+
+  // Query every triangle against the triangles after it in BVH leaf order ("position"): a node whose
+  // positions all come before the query's is skipped, which halves the traversal and keeps queries
+  // spatially coherent. Pairs are reported by triangle ids (smaller first).
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t num_blocks = (num_tris + kBlock - 1) / kBlock;
+  std::vector<BlockResult> blocks(num_blocks);
+  auto run_block = [&](std::size_t block) {
+    BlockResult& out = blocks[block];
+    const FpEnvironmentScope fp;  // one MXCSR check per block of queries (per thread)
+    std::uint32_t stack[96];
+    const std::size_t end = std::min(num_tris, (block + 1) * kBlock);
+    for (std::size_t position = block * kBlock; position < end; ++position) {
+      const std::uint32_t t = bvh.order[position];
+      if (degenerate[t]) continue;
+      const Box& query = bvh.leaf_boxes[position];
+      const std::uint32_t after = std::uint32_t(position + 1);
+      int top = 0;
+      stack[top++] = 0;
+      while (top > 0) {
+        const Node& node = bvh.nodes[stack[--top]];
+        if (node.end <= after || !overlap(node.box, query)) continue;
+        if (node.left != 0) {
+          stack[top++] = node.left;
+          stack[top++] = node.left + 1;
+          continue;
+        }
+        for (std::uint32_t i = std::max(node.begin, after); i < node.end; ++i) {
+          const std::uint32_t u = bvh.order[i];
+          if (degenerate[u] || !overlap(bvh.leaf_boxes[i], query)) continue;
+          ++out.candidates;
+          const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
+          if (triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {
+            ++out.pairs;
+            if (cap > 0) {
+              out.smallest.push_back(TrianglePair{lo, hi});
+              if (out.smallest.size() >= 2 * cap) keep_smallest(out.smallest, cap);
+            }
+          }
+        }
+      }
+    }
+    keep_smallest(out.smallest, cap);
+  };
+  if (parallel)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t b = r.begin(); b < r.end(); ++b) run_block(b);
+                      });
+  else
+    for (std::size_t b = 0; b < num_blocks; ++b) run_block(b);
+
+  for (const BlockResult& block : blocks) {
+    result.intersecting_pairs += block.pairs;
+    result.candidate_pairs += block.candidates;
+    result.first_pairs.insert(result.first_pairs.end(), block.smallest.begin(), block.smallest.end());
+  }
+  keep_smallest(result.first_pairs, cap);  // each block kept its smallest, so the union holds the global ones
+  return result;
+}
+
+}  // namespace volmap

@@ -1,0 +1,279 @@
+// analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components;
+// its boundary triangles go through analyze_surface_topology (sorted edge keys, union-find components
+// with per-component chi, per-vertex link union-find over a CSR of incident triangles), which the
+// surface checks (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
+#include <volmap/core/topology.hpp>
+
+#include <volmap/core/error.hpp>
+#include <volmap/core/local_tables.hpp>
+
+#include "face_grouping.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+namespace volmap {
+namespace {
+
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  void reset(std::size_t n) {
+    parent.resize(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+std::string fmt(std::size_t n) { return std::to_string(n); }
+
+}  // namespace
+
+TopologyReport analyze_topology(const TetMeshData& data) {
+  TopologyReport r;
+  if (data.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "vertex coordinate array size is not a multiple of 3");
+  if (data.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "", 0, "tet array size is not a multiple of 4");
+  const std::size_t nv = data.num_vertices(), nt = data.num_tets();
+  if (nt > detail::kMaxGroupedTets) throw Error(ErrorKind::BadInput, "", 0, "too many tets (> 2^29)");
+  r.num_vertices = nv;
+  r.num_tets = nt;
+  const std::uint32_t* tv = data.tets.data();
+
+  std::vector<char> degenerate(nt, 0);
+  std::vector<char> used(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::uint32_t* p = tv + 4 * t;
+    for (int i = 0; i < 4; ++i) {
+      if (p[i] >= nv)
+        throw Error(ErrorKind::BadInput, "", 0,
+                    "tet " + std::to_string(t) + " references vertex " + std::to_string(p[i]) + " but there are " +
+                        std::to_string(nv) + " vertices");
+      for (int j = 0; j < i; ++j)
+        if (p[i] == p[j]) degenerate[t] = 1;
+    }
+    if (degenerate[t]) {
+      ++r.num_degenerate_tets;
+      continue;
+    }
+    for (int i = 0; i < 4; ++i) used[p[i]] = 1;
+  }
+  for (std::size_t v = 0; v < nv; ++v) r.num_unused_vertices += used[v] ? 0 : 1;
+
+  // Faces: multiplicities, boundary half-faces, tet adjacency.
+  UnionFind tet_sets(nt);
+  std::vector<std::uint32_t>& bhf = r.boundary_half_faces;
+  detail::group_faces(
+      tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
+      [&](std::uint32_t, const std::uint64_t*, const std::uint32_t* g, std::size_t n) {
+        ++r.num_faces;
+        const std::uint32_t h0 = detail::hf_of(g[0]);
+        if (n == 1) {
+          bhf.push_back(h0);
+          return;
+        }
+        for (std::size_t k = 1; k < n; ++k) tet_sets.unite(h0 >> 2, detail::hf_of(g[k]) >> 2);
+        if (n == 2) {
+          ++r.num_interior_faces;
+          if (detail::parity_of(g[0]) == detail::parity_of(g[1])) {
+            ++r.num_inconsistent_faces;
+            if (r.example_inconsistent_face == kNone) r.example_inconsistent_face = h0;
+          }
+        } else {
+          ++r.num_nonmanifold_faces;
+          if (r.example_nonmanifold_face == kNone) r.example_nonmanifold_face = h0;
+        }
+      });
+  std::sort(bhf.begin(), bhf.end());
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!degenerate[t] && tet_sets.find(std::uint32_t(t)) == t) ++r.num_tet_components;
+
+  // Boundary triangles (outward windings) -> the triangle-surface topology.
+  const std::size_t nf = bhf.size();
+  r.num_boundary_faces = nf;
+  std::vector<std::uint32_t> tri(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t* p = tv + 4 * std::size_t(bhf[f] >> 2);
+    const std::uint8_t* lf = kTetFace[bhf[f] & 3];
+    for (int k = 0; k < 3; ++k) tri[3 * f + k] = p[lf[k]];
+  }
+  const SurfaceTopology s = analyze_surface_topology(nv, tri);
+  r.num_boundary_vertices = s.num_used_vertices;
+  r.num_boundary_edges = s.num_edges;
+  r.num_border_edges = s.num_border_edges;
+  r.num_overshared_edges = s.num_overshared_edges;
+  r.num_nonmanifold_boundary_edges = s.num_border_edges + s.num_overshared_edges;
+  r.example_nonmanifold_edge_vertex = s.example_nonmanifold_edge_vertex;
+  r.num_nonmanifold_boundary_vertices = s.num_nonmanifold_vertices;
+  r.example_nonmanifold_vertex = s.example_nonmanifold_vertex;
+  r.num_boundary_components = s.num_components;
+  r.boundary_euler = s.euler;
+  const long long twice_genus = 2 * (long long)r.num_boundary_components - r.boundary_euler;
+  r.boundary_genus = twice_genus >= 0 ? twice_genus / 2 : -((-twice_genus + 1) / 2);
+
+  r.faces_manifold = r.num_nonmanifold_faces == 0;
+  r.orientation_consistent = r.num_inconsistent_faces == 0;
+  r.single_tet_component = r.num_tet_components == 1;
+  r.boundary_edges_manifold = r.num_nonmanifold_boundary_edges == 0;
+  r.boundary_vertices_manifold = r.num_nonmanifold_boundary_vertices == 0;
+  r.boundary_closed = r.num_border_edges == 0;
+  r.single_boundary_component = r.num_boundary_components == 1;
+  r.boundary_genus_defined = nf > 0 && r.boundary_closed && r.boundary_edges_manifold && r.boundary_vertices_manifold &&
+                             twice_genus % 2 == 0;
+  r.boundary_genus_zero = r.boundary_genus_defined && r.boundary_genus == 0;
+  r.no_degenerate_tets = r.num_degenerate_tets == 0;
+  r.no_unused_vertices = r.num_unused_vertices == 0;
+  return r;
+}
+
+SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris) {
+  if (tris.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "triangle array size is not a multiple of 3");
+  if (num_vertices >= 0xFFFFFFFFu) throw Error(ErrorKind::Unsupported, "", 0, "too many vertices");
+  SurfaceTopology st;
+  st.num_vertices = num_vertices;
+  const std::size_t n_all = tris.size() / 3;
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    if (tris[i] >= num_vertices)
+      throw Error(ErrorKind::BadInput, "", 0,
+                  "triangle " + fmt(i / 3) + " refers to vertex " + fmt(tris[i]) + " of " + fmt(num_vertices));
+
+  // Valid triangles only.
+  std::vector<std::uint32_t> valid;
+  valid.reserve(n_all);
+  for (std::size_t t = 0; t < n_all; ++t) {
+    const std::uint32_t *v = &tris[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      ++st.num_repeated_id_triangles;
+    else
+      valid.push_back(std::uint32_t(t));
+  }
+  st.num_triangles = valid.size();
+
+  // Edges: (lo, hi) keys with the traversal direction, sorted.
+  struct HalfEdge {
+    std::uint64_t key;
+    std::uint32_t forward;  // 1 when traversed lo -> hi
+  };
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(3 * valid.size());
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
+      half_edges.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1u : 0u});
+    }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+
+  UnionFind sets(num_vertices);
+  for (std::uint32_t t : valid) {
+    sets.unite(tris[3 * t], tris[3 * t + 1]);
+    sets.unite(tris[3 * t], tris[3 * t + 2]);
+  }
+  std::vector<std::uint8_t> used(num_vertices, 0);
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) used[tris[3 * t + k]] = 1;
+
+  // Per-component V, E, F -> chi_i.
+  std::vector<long long> comp_chi(num_vertices, 0);
+  for (std::size_t v = 0; v < num_vertices; ++v)
+    if (used[v]) {
+      ++st.num_used_vertices;
+      ++comp_chi[sets.find(std::uint32_t(v))];
+      if (sets.find(std::uint32_t(v)) == v) ++st.num_components;
+    }
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i;
+    std::uint32_t forward = 0;
+    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) forward += half_edges[j++].forward;
+    const std::size_t count = j - i;
+    ++st.num_edges;
+    --comp_chi[sets.find(std::uint32_t(half_edges[i].key >> 32))];
+    if (count == 1) ++st.num_border_edges;
+    if (count > 2) ++st.num_overshared_edges;
+    if (count != 2 && st.example_nonmanifold_edge_vertex == kNone)
+      st.example_nonmanifold_edge_vertex = std::uint32_t(half_edges[i].key >> 32);
+    if (count == 2 && forward != 1) ++st.num_inconsistent_edges;
+    i = j;
+  }
+  for (std::uint32_t t : valid) ++comp_chi[sets.find(tris[3 * t])];
+  st.euler = (long long)st.num_used_vertices - (long long)st.num_edges + (long long)st.num_triangles;
+
+  // Vertex links: vertex -> incident valid triangles (CSR), then per vertex a small union-find over
+  // the link's vertices; a manifold vertex has one link component and link degrees <= 2.
+  std::vector<std::uint32_t> offsets(num_vertices + 1, 0);
+  for (std::uint32_t t : valid)
+    for (int k = 0; k < 3; ++k) ++offsets[tris[3 * t + k] + 1];
+  for (std::size_t v = 0; v < num_vertices; ++v) offsets[v + 1] += offsets[v];
+  std::vector<std::uint32_t> incident(offsets.back());
+  {
+    std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (std::uint32_t t : valid)
+      for (int k = 0; k < 3; ++k) incident[fill[tris[3 * t + k]]++] = t;
+  }
+  std::vector<std::uint32_t> link_vertices, link_degree;
+  UnionFind link_sets(0);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t begin = offsets[v], end = offsets[v + 1];
+    if (begin == end) continue;
+    link_vertices.clear();
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = tris[3 * incident[i] + k];
+        if (w != v) link_vertices.push_back(w);
+      }
+    std::sort(link_vertices.begin(), link_vertices.end());
+    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()), link_vertices.end());
+    const std::size_t m = link_vertices.size();
+    link_sets.reset(m);
+    link_degree.assign(m, 0);
+    auto local = [&](std::uint32_t w) {
+      return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
+    };
+    for (std::uint32_t i = begin; i < end; ++i) {
+      std::uint32_t ends[2], n = 0;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = tris[3 * incident[i] + k];
+        if (w != v) ends[n++] = local(w);
+      }
+      link_sets.unite(ends[0], ends[1]);
+      ++link_degree[ends[0]];
+      ++link_degree[ends[1]];
+    }
+    std::size_t link_components = 0;
+    bool degree_ok = true;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      if (link_sets.find(i) == i) ++link_components;
+      if (link_degree[i] > 2) degree_ok = false;
+    }
+    if (link_components != 1 || !degree_ok) {
+      ++st.num_nonmanifold_vertices;
+      if (st.example_nonmanifold_vertex == kNone) st.example_nonmanifold_vertex = std::uint32_t(v);
+    }
+  }
+
+  st.genus_defined = st.num_triangles > 0 && st.num_border_edges == 0 && st.num_overshared_edges == 0 &&
+                     st.num_nonmanifold_vertices == 0;
+  if (st.genus_defined) {
+    for (std::size_t v = 0; v < num_vertices; ++v)
+      if (used[v] && sets.find(std::uint32_t(v)) == v) {
+        const long long g = (2 - comp_chi[v]) / 2;
+        st.genus += g;
+        if (g != 0) ++st.num_nonzero_genus_components;
+      }
+  }
+  return st;
+}
+
+}  // namespace volmap

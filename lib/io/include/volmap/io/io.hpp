@@ -1,0 +1,81 @@
+// volmap/io/io.hpp — reading and writing tet meshes, boundary maps and rationals files.
+// All readers throw volmap::Error with file, line and reason (BadInput for malformed content, Io for
+// a missing/unreadable path or a directory, Unsupported for valid input outside what we handle);
+// they validate declared sizes against the file size before allocating. All writers are atomic
+// (temp file + rename; nothing appears on error) and print doubles in shortest round-trip form
+// (std::to_chars), so every double read back is bit-identical (like %.17g, but shorter).
+// Vertex ids in files: Medit 1-based, maps/VTK/VTU 0-based; in memory 0-based. Tet order and each
+// tet's vertex order are kept exactly as in the file.
+#pragma once
+
+#include <volmap/core/error.hpp>
+#include <volmap/core/mesh_data.hpp>
+#include <volmap/predicates.hpp>
+
+#include <string>
+#include <vector>
+
+namespace volmap {
+
+// Medit .mesh (keywords/counts on any lines, # comments, CRLF, optional End, MeshVersionFormatted
+// 1-3, Triangles/Edges/Corners/... skipped by count, unknown sections skipped up to the next
+// keyword, labels kept). Rejects ids outside [1,nv], Dimension != 3, truncated blocks, NaN/Inf,
+// malformed or overlong numbers, counts that cannot fit in the file; Hexahedra/Prisms/Pyramids with
+// a non-zero count are Unsupported.
+TetMeshData read_medit(const std::string& path);
+void write_medit(const std::string& path, const TetMeshData& mesh);
+
+// Legacy VTK unstructured grid (ASCII or BINARY big-endian, 4.x and 5.1 layouts), tets only. Cells of
+// type 10 are kept in order, lower-dimensional cells (types 1-9) skipped, other types rejected
+// (Unsupported). Without CELL_TYPES every cell must have 4 ids. FIELD/CELL_DATA/POINT_DATA/METADATA
+// are skipped except int SCALARS "label". Writer: 4.x layout, double points, labels as int SCALARS
+// "label" in CELL_DATA/POINT_DATA when not all zero (read back by read_vtk).
+TetMeshData read_vtk(const std::string& path);
+void write_vtk(const std::string& path, const TetMeshData& mesh, bool binary = false);
+
+// VTK XML .vtu (read: ascii, inline base64, appended raw/base64, any byte order; compressed files
+// are Unsupported). Write: Float64 points, Int64 connectivity/offsets, UInt8 types, Int32 "label"
+// point/cell arrays when labels are not all zero, optional per-cell Float64 arrays.
+struct CellDataArray {
+  std::string name;
+  std::vector<double> values;  // one per tet
+};
+TetMeshData read_vtu(const std::string& path);
+// Same, also returning the one-component CellData arrays other than "label", as doubles.
+TetMeshData read_vtu(const std::string& path, std::vector<CellDataArray>& cell_data);
+// Writes appended raw binary (compact, exact).
+void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data = {});
+enum class VtuEncoding { AppendedRaw /* little-endian raw, UInt64 headers */, Ascii /* shortest round-trip doubles */ };
+void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
+               VtuEncoding encoding);
+
+// By extension (.mesh, .vtk, .vtu, case-insensitive); throws Error(Unsupported) for anything else.
+enum class TetMeshFormat { Medit, Vtk, Vtu, Unknown };
+TetMeshFormat tet_mesh_format(const std::string& path);
+TetMeshData read_tet_mesh(const std::string& path);
+void write_tet_mesh(const std::string& path, const TetMeshData& mesh);  // .vtk ascii, .vtu appended raw
+struct TetMeshWriteOptions {
+  bool vtk_binary = false;
+  VtuEncoding vtu_encoding = VtuEncoding::AppendedRaw;
+};
+void write_tet_mesh(const std::string& path, const TetMeshData& mesh, const TetMeshWriteOptions& options);
+
+// Boundary map `vid x y z` (0-based, any whitespace, blank lines ignored), kept in file order with
+// each entry's line in BoundaryMap::source_lines. Rejects duplicates (naming the later line),
+// negative or non-integer vids, non-finite or malformed coordinates, lines without exactly 4 values.
+BoundaryMap read_boundary_map(const std::string& path);
+enum class MapPrecision { Full /* shortest round-trip, exact */, Volmap6 /* %f: the dataset's 6 decimals */ };
+// Sorted by vid.
+void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrecision precision = MapPrecision::Full);
+// Throws Error(BadInput) naming `map_path` and the offending entry's line unless the map's vids are
+// exactly the mesh's boundary vertices (boundary_vertex_ids): each once, no interior or
+// out-of-range ids; a missing boundary vertex is named (line 0).
+void validate_boundary_map(const BoundaryMap& map, const TetMeshData& mesh, const std::string& map_path);
+
+// Rationals file: one `num/den` (or `num`) token per line, 3 per vertex in mesh order, read exactly
+// and canonicalised (2/4 -> 1/2). Rejects den = 0, malformed tokens and a count != 3*expected_vertices.
+// Written as mpq_out_str does: `num/den`, or `num` when den = 1.
+std::vector<Rational> read_rationals(const std::string& path, std::size_t expected_vertices);
+void write_rationals(const std::string& path, const std::vector<Rational>& xyz);
+
+}  // namespace volmap

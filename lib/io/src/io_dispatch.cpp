@@ -1,0 +1,43 @@
+// Format dispatch by file extension (.mesh, .vtk, .vtu; case-insensitive).
+#include <volmap/io/io.hpp>
+
+#include <algorithm>
+#include <cctype>
+
+namespace volmap {
+
+TetMeshFormat tet_mesh_format(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  const std::size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return TetMeshFormat::Unknown;
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == "mesh") return TetMeshFormat::Medit;
+  if (ext == "vtk") return TetMeshFormat::Vtk;
+  if (ext == "vtu") return TetMeshFormat::Vtu;
+  return TetMeshFormat::Unknown;
+}
+
+TetMeshData read_tet_mesh(const std::string& path) {
+  switch (tet_mesh_format(path)) {
+    case TetMeshFormat::Medit: return read_medit(path);
+    case TetMeshFormat::Vtk: return read_vtk(path);
+    case TetMeshFormat::Vtu: return read_vtu(path);
+    default: break;
+  }
+  throw Error(ErrorKind::Unsupported, path, 0, "unknown tet mesh extension (expected .mesh, .vtk or .vtu)");
+}
+
+void write_tet_mesh(const std::string& path, const TetMeshData& mesh) { write_tet_mesh(path, mesh, TetMeshWriteOptions{}); }
+
+void write_tet_mesh(const std::string& path, const TetMeshData& mesh, const TetMeshWriteOptions& options) {
+  switch (tet_mesh_format(path)) {
+    case TetMeshFormat::Medit: write_medit(path, mesh); return;
+    case TetMeshFormat::Vtk: write_vtk(path, mesh, options.vtk_binary); return;
+    case TetMeshFormat::Vtu: write_vtu(path, mesh, {}, options.vtu_encoding); return;
+    default: break;
+  }
+  throw Error(ErrorKind::Unsupported, path, 0, "unknown tet mesh extension (expected .mesh, .vtk or .vtu)");
+}
+
+}  // namespace volmap

@@ -1,0 +1,198 @@
+// io_text.hpp (private to lib/src) — shared machinery of the text readers and writers:
+// whole-file loading, a whitespace tokenizer over a memory buffer that tracks 1-based line numbers,
+// strict number parsing (std::from_chars; finite values only, whole token consumed, bounded length)
+// and a buffered writer that prints doubles in shortest round-trip form (std::to_chars), so every
+// double written is read back bit-exactly.
+#pragma once
+
+#include <volmap/io/atomic_file.hpp>
+#include <volmap/core/error.hpp>
+#include <volmap/core/mesh_data.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace volmap::io_detail {
+
+// Longest numeric token accepted (the exact decimal expansion of a double has at most ~770
+// significant digits; longer tokens are rejected as malformed rather than parsed).
+inline constexpr std::size_t kMaxNumberChars = 1100;
+
+// Reads a whole file. Throws Error(Io) when it is missing, a directory or unreadable.
+std::string read_whole_file(const std::string& path);
+
+struct Token {
+  std::string_view text;
+  std::size_t line = 0;  // 1-based line of the token's first character
+};
+
+inline bool is_space(char c) {
+  // ' ' \t \n \v \f \r: one compare for the common printable case.
+  const unsigned char u = static_cast<unsigned char>(c);
+  return u == ' ' || (u >= '\t' && u <= '\r');
+}
+inline bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+
+// Whitespace tokenizer. With `hash_comments`, '#' starts a comment that runs to the end of the line.
+class Tokenizer {
+ public:
+  Tokenizer(const char* begin, const char* end, bool hash_comments)
+      : begin_(begin), pos_(begin), end_(end), hash_comments_(hash_comments) {}
+
+  // Next token, or false at the end of the buffer.
+  bool next(Token& token) {
+    skip_space();
+    if (pos_ == end_) return false;
+    const char* start = pos_;
+    while (pos_ != end_ && kind(*pos_) == kTokenChar) ++pos_;
+    token.text = std::string_view(start, static_cast<std::size_t>(pos_ - start));
+    token.line = line_;
+    last_line_ = line_;
+    return true;
+  }
+  // Fast path for plain unsigned decimal tokens (up to 18 digits): 1 = parsed into `value` (and the
+  // token consumed), 0 = end of input, -1 = the next token is something else (nothing consumed;
+  // callers fall back to next() and the strict parsers).
+  int next_unsigned(std::uint64_t& value, std::size_t& token_line) {
+    skip_space();
+    if (pos_ == end_) return 0;
+    const char* p = pos_;
+    std::uint64_t x = 0;
+    int digits = 0;
+    while (p != end_ && digits < 18) {
+      const unsigned d = static_cast<unsigned char>(*p) - unsigned('0');
+      if (d > 9) break;
+      x = x * 10 + d;
+      ++p, ++digits;
+    }
+    if (digits == 0 || (p != end_ && kind(*p) == kTokenChar)) return -1;
+    pos_ = p;
+    last_line_ = token_line = line_;
+    value = x;
+    return 1;
+  }
+  bool peek(Token& token) {
+    const char* saved = pos_;
+    const std::size_t saved_line = line_;
+    const std::size_t saved_last = last_line_;
+    const bool ok = next(token);
+    pos_ = saved, line_ = saved_line, last_line_ = saved_last;
+    return ok;
+  }
+  // Skips whitespace and comments; afterwards position() is at the next token (or the end).
+  void skip_space() {
+    while (pos_ != end_) {
+      const unsigned k = kind(*pos_);
+      if (k == kTokenChar) break;
+      if (k == kNewline) {
+        ++line_, ++pos_;
+      } else if (k == kComment) {
+        while (pos_ != end_ && *pos_ != '\n') ++pos_;
+      } else {
+        ++pos_;
+      }
+    }
+  }
+  // Moves to the start of the next line (used after a keyword line whose rest is binary data).
+  void skip_rest_of_line() {
+    while (pos_ != end_ && *pos_ != '\n') ++pos_;
+    if (pos_ != end_) ++pos_, ++line_;
+  }
+  std::size_t line() const { return line_; }
+  // Counts one more line (for callers that consumed header lines themselves).
+  void count_line() { ++line_; }
+  // Line of the last token returned by next() (1 before any): where truncation errors point.
+  std::size_t last_line() const { return last_line_; }
+  std::size_t remaining() const { return static_cast<std::size_t>(end_ - pos_); }
+  const char* position() const { return pos_; }
+  const char* end() const { return end_; }
+  const char* begin() const { return begin_; }
+  // Jumps forward to `p` (binary payloads), counting the newlines crossed.
+  void advance_to(const char* p) {
+    for (; pos_ < p; ++pos_)
+      if (*pos_ == '\n') ++line_;
+  }
+
+ private:
+  enum : unsigned char { kTokenChar = 0, kSpace = 1, kNewline = 2, kComment = 3 };
+  unsigned kind(char c) const {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u > ' ' && u != '#') return kTokenChar;
+    if (u == '\n') return kNewline;
+    if (u == '#') return hash_comments_ ? kComment : kTokenChar;
+    return (u == ' ' || (u >= '\t' && u <= '\r')) ? kSpace : kTokenChar;
+  }
+  const char* begin_;
+  const char* pos_;
+  const char* end_;
+  std::size_t line_ = 1;
+  std::size_t last_line_ = 1;
+  bool hash_comments_;
+};
+
+// Strict parsers: the whole token must be a number; a leading '+' is accepted; NaN, Inf, out-of-range
+// and overlong tokens are rejected. Return false instead of throwing so callers word the error.
+bool parse_double(std::string_view text, double& value);
+// Integers: optional sign and 1..18 decimal digits (hand-rolled: the hot path of tet blocks).
+inline bool parse_int64(std::string_view text, std::int64_t& value) {
+  std::size_t i = 0;
+  bool negative = false;
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) negative = text[0] == '-', i = 1;
+  const std::size_t digits = text.size() - i;
+  if (digits == 0 || digits > 18) return false;
+  std::int64_t v = 0;
+  for (; i < text.size(); ++i) {
+    const unsigned d = static_cast<unsigned char>(text[i]) - unsigned('0');
+    if (d > 9) return false;
+    v = v * 10 + static_cast<std::int64_t>(d);
+  }
+  value = negative ? -v : v;
+  return true;
+}
+
+// Throwing variants: Error(BadInput) at path:line "<what>: expected a finite number, found '<tok>'".
+double expect_double(const Token& token, const std::string& path, const char* what);
+std::int64_t expect_int(const Token& token, const std::string& path, const char* what);
+// A count: an integer in [0, max_count]; and at least `min_bytes_each` bytes per element must remain
+// in the file (protects allocations against huge declared counts in small files).
+std::size_t expect_count(const Token& token, const std::string& path, const char* what, std::size_t remaining_bytes,
+                         std::size_t min_bytes_each, std::size_t max_count);
+
+// Throws Error(BadInput) naming `path` when the mesh cannot be written faithfully: array sizes not
+// multiples of 3/4, ids >= num_vertices, non-finite coordinates, label arrays of the wrong size.
+void check_mesh_writable(const TetMeshData& mesh, const std::string& path);
+
+// Shortened, printable copy of a token for error messages.
+std::string quote(std::string_view text);
+
+// Buffered text output into an AtomicOutput.
+class TextWriter {
+ public:
+  explicit TextWriter(AtomicOutput& out) : out_(out) { buffer_.reserve(kChunk + 4096); }
+  ~TextWriter() = default;
+  void put(std::string_view s) {
+    buffer_.append(s.data(), s.size());
+    maybe_flush();
+  }
+  void put(char c) {
+    buffer_.push_back(c);
+    maybe_flush();
+  }
+  void put_double(double v);  // shortest round-trip form
+  void put_int(std::int64_t v);
+  void put_fixed6(double v);  // printf("%f") — 6 decimals
+  void flush();
+
+ private:
+  static constexpr std::size_t kChunk = 1 << 20;
+  void maybe_flush() {
+    if (buffer_.size() >= kChunk) flush();
+  }
+  AtomicOutput& out_;
+  std::string buffer_;
+};
+
+}  // namespace volmap::io_detail

@@ -1,0 +1,100 @@
+// volmap/surface/domain.hpp — base domains of the VOLMAP benchmark (cube, tet, pyr, octa, star) and
+// user-defined (custom) polyhedral domains read from a file.
+//
+// Conventions (see volmap-reference.md §3):
+//  - Nodes are 0-based; every node has a target point (its position on the domain). Nodes of the
+//    built-in domains (except the star's face nodes 8..13) and of custom domains have a probe: a point
+//    computed from the input's bounding box; the node's surface vertex is the boundary vertex nearest
+//    to the probe.
+//  - Arcs are traced in the listed order, from `from` to `to`. The star's 6 face diagonals are traced
+//    after the 12 cube arcs; each diagonal path is cut in its middle, which becomes node 8+d; its two
+//    halves are arcs 12+2d (from -> 8+d) and 13+2d (8+d -> to). Arcs 24..35 come after.
+//  - Faces are cyclic node lists, counter-clockwise seen from outside (right-hand rule with the
+//    outward normal). `rotation[n]` is the cyclic counter-clockwise order (seen from outside) of the
+//    arcs around node n. Both are derived from the target geometry and the kernel point (every
+//    domain is star-shaped w.r.t. its kernel; built-ins use the centroid of the targets).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace volmap {
+
+using Point3 = std::array<double, 3>;
+
+enum class DomainKind { Cube, Tet, Pyramid, Octahedron, Star, Custom };
+
+struct DomainArc {
+  int from = -1;
+  int to = -1;
+};
+
+// A face diagonal of the star: traced from `from` to `to`, its middle vertex becomes `middle_node`.
+struct DomainDiagonal {
+  int from = -1;
+  int to = -1;
+  int middle_node = -1;
+  int first_arc = -1;   // from -> middle
+  int second_arc = -1;  // middle -> to
+};
+
+struct DomainFace {
+  std::vector<int> nodes;  // counter-clockwise seen from outside
+  std::vector<int> arcs;   // arcs[i] joins nodes[i] and nodes[i+1 mod k]
+};
+
+struct Domain {
+  DomainKind kind = DomainKind::Custom;
+  std::string name;
+  std::vector<Point3> targets;                  // one per node
+  // Probe of node i = mean of the listed bbox corners (reference corner numbering, §3), unless
+  // probe_fraction[i] is set (fractions of the bbox per axis: m + f*(M-m)); empty = no probe (star
+  // face nodes, found from the diagonals).
+  std::vector<std::vector<int>> probe_corners;
+  std::vector<std::array<double, 3>> probe_fraction;  // NaN entries when unused
+  std::vector<DomainArc> arcs;                  // all arcs (star: including the diagonal halves)
+  std::vector<DomainDiagonal> diagonals;        // star only
+  Point3 kernel{};                              // a point the domain is strictly star-shaped around
+  std::vector<DomainFace> faces;
+  std::vector<std::vector<int>> rotation;       // per node: incident arc ids, CCW from outside
+  double size = 0;                              // diagonal of the targets' bounding box
+
+  std::size_t num_nodes() const { return targets.size(); }
+  bool has_probe(int node) const;
+  // The probe of `node` for the input bbox [bmin,bmax]. Precondition: has_probe(node).
+  Point3 probe(int node, const Point3& bmin, const Point3& bmax) const;
+  // Arc ids in tracing order (star: cube arcs, then the diagonals as pairs, then the rest).
+  // A diagonal appears once, as its first arc id; the tracer handles both halves.
+  std::vector<int> trace_order() const;
+};
+
+// "cube", "tet", "pyr", "octa", "star" (also the reference's upper-case names CUBE, TETRAHEDRON,
+// PYRAMID, OCTAHEDRON, STAR). Throws Error(BadInput) for anything else.
+Domain builtin_domain(const std::string& name);
+bool is_builtin_domain_name(const std::string& name);
+
+// Custom domain file: one directive per line, any whitespace, `#` starts a comment:
+//   n i [j ...]   node whose probe is the mean of bbox corners i, j, ... (0..7)
+//   nm x y z      target of the k-th node (as many as `n` lines)
+//   a i j         arc between nodes i and j (0-based), traced i -> j, in file order
+//   k x y z       optional kernel point (default: centroid of the targets)
+// Validation (Error(BadInput) with file and line): counts and indices, no duplicate arcs or loops,
+// a 3-connected planar graph whose faces (derived from the geometry around the kernel) satisfy
+// V - E + F = 2, every face planar and strictly convex, the domain strictly star-shaped w.r.t. the
+// kernel. Unknown directives are errors (the reference ignores them; we report the line).
+Domain read_custom_domain(const std::string& path);
+// Same from text (`source_name` is used in error messages).
+Domain parse_custom_domain(const std::string& text, const std::string& source_name);
+
+// A built-in name or a custom domain file path.
+Domain domain_from_name_or_file(const std::string& name_or_path);
+
+// Derives kernel-relative rotations, faces and size, then validates (shared by built-ins and custom
+// domains). Throws Error(BadInput) naming `source` when the domain is invalid.
+void finalize_domain(Domain& domain, const std::string& source);
+
+// Closest distance from p to the domain boundary (union of its face polygons).
+double distance_to_domain_boundary(const Domain& domain, const Point3& p);
+
+}  // namespace volmap

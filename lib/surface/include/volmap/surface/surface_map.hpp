@@ -1,0 +1,66 @@
+// volmap/surface/surface_map.hpp — boundary maps of a genus-0 tet mesh onto a base domain
+// (volmap-reference.md §4, VOLMAP paper §5 and Fig. 4), verified with the exact check.
+//
+// Algorithm:
+//  1. Node vertices: the boundary vertex nearest to each node's probe (ties -> smallest vid; a vertex
+//     already taken by an earlier node is skipped, so nodes always get distinct vertices).
+//  2. Arcs, in the domain's order: Dijkstra shortest paths (edge length) over boundary edges, never
+//     entering a vertex of an earlier arc or another node; the path must leave/enter each node inside
+//     the sector that the domain's rotation system prescribes between the arcs already traced there,
+//     so the embedded graph always has the domain's cyclic order of arcs around every node.
+//     Star: the 6 face diagonals are traced as one path each and cut at h = floor(|p|/2); p[h] is
+//     the face node.
+//     If an arc cannot be traced in that order (the reference order can close a cycle, e.g. the
+//     octahedron's equator, with two still isolated nodes on the same side), everything is redone
+//     with a spanning tree of the nodes traced first, which keeps the partial embedding equivalent
+//     to the domain's at every step. Surfaces too coarse for the domain are then retried after 1 and
+//     2 rounds of splitting every boundary edge (on the tets as well).
+//  3. Refinement on the tet mesh (new vertices appended, ids stable): after each arc every boundary
+//     edge joining two arc/node vertices that is not an arc edge is split at its midpoint (all tets
+//     around it are split), which keeps a free path between any two arcs (paper Fig. 4) and makes
+//     every chart Tutte-embeddable. The splits are made on the working boundary surface (flat
+//     arrays; triangles around a vertex in one pool) and replayed at the end on a TetMesh with
+//     TetMesh::split_edge, which appends vertices in the same order; new tets are checked exactly.
+//  4. Charts: boundary triangles flooded between arcs, each matched to its domain face by the side of
+//     its arcs; Tutte's embedding (uniform weights) in the face plane with the chart boundary on the
+//     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart.
+//  5. Verification: the exact surface-map check on the numbers that will be written.
+#pragma once
+
+#include <volmap/surface/domain.hpp>
+#include <volmap/core/mesh_data.hpp>
+#include <volmap/surface/surface_map_check.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace volmap {
+
+struct SurfaceMapResult {
+  TetMeshData mesh;            // the (possibly refined) tet mesh the map refers to
+  BoundaryMap map;             // one entry per boundary vertex of `mesh`, sorted by vid
+  std::size_t added_vertices = 0;
+  std::vector<std::uint32_t> node_vertices;  // vertex of every domain node
+  std::size_t collided_nodes = 0;            // nodes whose nearest vertex was taken by an earlier node
+  SurfaceMapCheckResult check;               // the exact check of `map` on `mesh`
+};
+
+// Maps the boundary of `mesh` onto `domain`. Throws Error(Failed) when an arc cannot be traced, the
+// embedding does not match the domain or the exact check fails; Error(BadInput) for a mesh whose
+// boundary is not a closed manifold surface.
+SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain);
+
+// Sphere maps: the central projection of a star-shaped map onto the sphere of radius `radius`
+// around `centre` (points x -> centre + radius * (x - centre) / |x - centre|). The projection keeps
+// every boundary triangle's orientation with respect to the centre in exact arithmetic; the result
+// is re-checked exactly (kernel = centroid of the projected points). Throws Error(Failed) when
+// rounding breaks a triangle.
+SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Point3& centre, double radius);
+
+// The sphere domain used by `volmap-surface-map sphere`: centre (50,50,50), radius 50.
+inline constexpr double kSphereCentre[3] = {50, 50, 50};
+inline constexpr double kSphereRadius = 50;
+
+}  // namespace volmap

@@ -1,0 +1,183 @@
+// Exact surface-map check (see surface_map_check.hpp). Triangle signs: a double determinant with
+// Shewchuk's error bound decides almost every cone; the exact predicate settles the rest.
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/surface/surface_map_check.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace volmap {
+
+int orient3d_filtered(const double* a, const double* b, const double* c, const double* d) {
+  // Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates"
+  // (1997), orient3d with o3derrboundA = (7 + 56 eps) eps, eps = 2^-53.
+  const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
+  const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
+  const double adz = a[2] - d[2], bdz = b[2] - d[2], cdz = c[2] - d[2];
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  constexpr double eps = 1.1102230246251565e-16;  // 2^-53
+  constexpr double bound = (7.0 + 56.0 * eps) * eps;
+  const double err = bound * permanent;
+  if (std::isfinite(det) && std::isfinite(err)) {
+    if (det > err) return 1;
+    if (-det > err) return -1;
+  }
+  return orient3d(a, b, c, d);
+}
+
+namespace {
+
+// Neumaier-compensated sum of one coordinate.
+struct CompensatedSum {
+  double sum = 0, comp = 0;
+  void add(double x) {
+    const double t = sum + x;
+    comp += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
+    sum = t;
+  }
+  double value() const { return sum + comp; }
+};
+
+bool has_at_most_6_decimals(double x) {
+  const double s = x * 1e6;
+  return std::fabs(s - std::nearbyint(s)) < 1e-3;
+}
+
+}  // namespace
+
+SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryMap& map, const Domain* domain,
+                                        const SurfaceMapCheckOptions& options) {
+  SurfaceMapCheckResult r;
+  const std::size_t nv = mesh.num_vertices();
+  const std::vector<std::uint64_t> faces = boundary_half_faces(mesh);
+  const std::vector<std::uint32_t> bverts = boundary_vertex_ids(mesh, faces);
+  r.boundary_triangles = faces.size();
+  r.boundary_vertices = bverts.size();
+  r.map_entries = map.size();
+
+  // slot[v] = index of v's map entry, -1 none; boundary flag.
+  std::vector<std::int32_t> slot(nv, -1);
+  std::vector<char> is_boundary(nv, 0);
+  for (auto v : bverts) is_boundary[v] = 1;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const std::uint32_t v = map.vids[i];
+    if (v >= nv || !is_boundary[v]) {
+      ++r.not_boundary;
+      continue;
+    }
+    if (slot[v] >= 0) {
+      ++r.duplicates;
+      continue;
+    }
+    slot[v] = static_cast<std::int32_t>(i);
+  }
+  for (auto v : bverts)
+    if (slot[v] < 0) ++r.missing;
+  if (r.missing || r.not_boundary || r.duplicates) {
+    r.reason = "the map does not cover the boundary exactly once (" + std::to_string(r.missing) + " missing, " +
+               std::to_string(r.not_boundary) + " not boundary vertices, " + std::to_string(r.duplicates) +
+               " duplicates)";
+    return r;
+  }
+  for (double x : map.xyz)
+    if (!std::isfinite(x)) {
+      r.reason = "the map has a non-finite coordinate";
+      return r;
+    }
+
+  // Kernel point.
+  if (options.override_kernel) {
+    r.kernel = options.kernel;
+  } else if (domain && domain->kind == DomainKind::Custom) {
+    r.kernel = domain->kernel;
+  } else {
+    CompensatedSum s[3];
+    for (auto v : bverts)
+      for (int k = 0; k < 3; ++k) s[k].add(map.xyz[3 * slot[v] + k]);
+    for (int k = 0; k < 3; ++k) r.kernel[k] = s[k].value() / static_cast<double>(bverts.size());
+  }
+
+  for (auto hf : faces) {
+    const auto tri = half_face_vertices(mesh, hf);
+    const int s = orient3d_filtered(&map.xyz[3 * slot[tri[0]]], &map.xyz[3 * slot[tri[1]]],
+                                    &map.xyz[3 * slot[tri[2]]], r.kernel.data());
+    if (s > 0)
+      ++r.positive;
+    else if (s < 0)
+      ++r.negative;
+    else
+      ++r.zero;
+  }
+  bool cones_ok = r.zero == 0 && (r.negative == 0 || (options.accept_either_sign && r.positive == 0));
+  if (!cones_ok) {
+    r.reason = std::to_string(r.negative) + " boundary triangles inverted and " + std::to_string(r.zero) +
+               " degenerate with respect to the kernel point";
+  }
+
+  if (options.sphere_radius > 0) {
+    r.domain_checked = true;
+    r.tolerance = options.position_tolerance;
+    if (!(r.tolerance > 0)) {  // as for polyhedral domains: 1e-9 * size, or 1e-6 for 6-decimal maps
+      r.tolerance = 1e-9 * 2 * options.sphere_radius;
+      if (std::all_of(map.xyz.begin(), map.xyz.end(), has_at_most_6_decimals)) r.tolerance = std::max(r.tolerance, 1e-6);
+    }
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (map.xyz[3 * i + k] - options.kernel[k]) * (map.xyz[3 * i + k] - options.kernel[k]);
+      const double dist = std::fabs(std::sqrt(d2) - options.sphere_radius);
+      r.max_domain_distance = std::max(r.max_domain_distance, dist);
+      if (dist > r.tolerance) ++r.off_domain;
+    }
+    if (cones_ok && r.off_domain)
+      r.reason = std::to_string(r.off_domain) + " image points off the sphere (max distance " +
+                 std::to_string(r.max_domain_distance) + ")";
+  } else if (domain) {
+    r.domain_checked = true;
+    double tol = options.position_tolerance;
+    if (!(tol > 0)) {
+      tol = 1e-9 * domain->size;
+      bool rounded6 = true;
+      for (double x : map.xyz)
+        if (!has_at_most_6_decimals(x)) {
+          rounded6 = false;
+          break;
+        }
+      if (rounded6) tol = std::max(tol, 1e-6);
+    }
+    r.tolerance = tol;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      const Point3 p{map.xyz[3 * i], map.xyz[3 * i + 1], map.xyz[3 * i + 2]};
+      const double dist = distance_to_domain_boundary(*domain, p);
+      r.max_domain_distance = std::max(r.max_domain_distance, dist);
+      if (dist > tol) ++r.off_domain;
+    }
+    r.corners_expected = domain->num_nodes();
+    for (const auto& t : domain->targets) {
+      std::size_t hits = 0;
+      for (std::size_t i = 0; i < map.size(); ++i)
+        hits += map.xyz[3 * i] == t[0] && map.xyz[3 * i + 1] == t[1] && map.xyz[3 * i + 2] == t[2];
+      r.corners_exact += hits == 1;
+    }
+    if (cones_ok && r.off_domain)
+      r.reason = std::to_string(r.off_domain) + " image points off the domain boundary (max distance " +
+                 std::to_string(r.max_domain_distance) + ")";
+    else if (cones_ok && r.corners_exact != r.corners_expected)
+      r.reason = std::to_string(r.corners_expected - r.corners_exact) +
+                 " domain corners are not hit exactly by exactly one image point";
+  }
+  r.ok = r.reason.empty();
+  return r;
+}
+
+}  // namespace volmap

@@ -1,0 +1,90 @@
+// volmap/volume/cone_repair.hpp — B1 star-patch cone repair (docs/mapping.md §7).
+// For each cluster of non-positive target tets: grow a region R (a ball) until its boundary is
+// star-shaped in BOTH the target and the source (strict kernel points from a 4-variable Chebyshev
+// LP solved in double, then verified with exact orient3d), replace R by the cones from one new
+// vertex w (source p, target q) over the outward faces of ∂R, and re-insert R's old interior
+// vertices by splitting the cone tet that contains them (kept vertices; their target is a point
+// strictly inside the matching target tet). Every new tet is exactly positive in both spaces, so
+// the refined source stays a valid tetrahedralisation and the repaired map stays certifiable.
+// Conventions: flat TetMeshData, VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0); boundary
+// vertices and faces are never changed; original vertex ids kept, new vertices appended; tets of a
+// patch reuse the slots of R (extra ones appended, unused slots removed at the end).
+#pragma once
+
+#include <volmap/core/mesh_data.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace volmap {
+
+struct ConeRepairOptions {
+  std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
+  std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
+  int max_growth_steps = 400;         // per cluster
+  int growth_lookahead = 4;           // growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only
+                                      // (then plain growth and a 2-candidate lookahead are tried when it fails)
+  int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
+  int max_rounds = 8;                 // recompute clusters and retry
+  // Wall-clock limit of the whole call (0 = none), checked before each cluster and at each growth
+  // step; a cluster interrupted by it is left exactly as it was (counted in failures.time_limit).
+  // G1 mouse star: 305 bad tets took 34 s without it.
+  double time_limit_seconds = 0;
+  // When the LP growth fails on a cluster with a face on ∂M: grow again towards fixed target points
+  // just inside that face, then near its edges inside both it and the ∂M face across the edge
+  // (exact visibility), see cone_repair.cpp.
+  bool aimed_growth = true;
+};
+
+struct ConeRepairResult {
+  std::size_t clusters = 0;           // clusters found in the first round
+  std::size_t patches = 0;            // patches applied
+  std::size_t failed_clusters = 0;    // clusters left (last round)
+  std::size_t tets_before = 0, tets_after = 0, vertices_added = 0;
+  std::size_t max_region = 0;         // largest |R| applied
+  // Diagnostics (every attempt of every round): why a cluster was left as it was.
+  struct Failures {
+    std::size_t region_limit = 0;       // R grew beyond max_region_tets
+    std::size_t growth_steps = 0;       // max_growth_steps exhausted
+    std::size_t stalled = 0;            // no LP progress for stall_growth_steps
+    std::size_t not_ball = 0;           // ∂R not a sphere and nothing left to add
+    std::size_t no_growth_face = 0;     // kernel empty but every violated face is on ∂M
+    std::size_t last_no_target = 0;     // of the growth failures: the target kernel was empty last
+    std::size_t last_no_source = 0;     //   ... the source kernel was empty last
+    std::size_t reinsertion = 0;        // an interior vertex of R could not be re-inserted
+    std::size_t not_positive = 0;       // a new tet not exactly positive in both spaces
+    std::size_t face_mismatch = 0;      // new tets do not close onto ∂R
+    std::size_t budget = 0;             // max_added_tets would be exceeded
+    std::size_t time_limit = 0;         // time_limit_seconds reached during growth
+  } failures;
+  std::size_t attempts = 0, growth_steps = 0, lp_solves = 0;  // work counters
+  double seconds_growth = 0, seconds_patch = 0, seconds_setup = 0;
+};
+
+// Repairs the clusters of non-positive target tets in place (source refined, target extended; new
+// vertices appended with on_boundary 0). A cluster whose region cannot be made a ball with strict
+// kernels in both spaces within the limits, or whose patch would exceed max_added_tets, is left
+// exactly as it was (counted in failed_clusters). Throws Error(BadInput) on inconsistent arrays.
+ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_boundary,
+                             std::vector<double>& target_xyz, const ConeRepairOptions& options = {});
+
+// Strict-kernel point of a set of oriented triangles (3 vertex positions each, 9 doubles per
+// triangle; a point q is inside when orient3d(a,b,c,q) > 0 for every triangle): Chebyshev LP in
+// double, verified exactly. Returns false when no verified point was found.
+bool strict_kernel_point(const std::vector<double>& triangles, double* q);
+
+struct RelocationResult {
+  std::size_t moved = 0;            // vertex moves applied
+  int sweeps = 0;
+  std::size_t nonpositive_before = 0, nonpositive_after = 0;
+};
+
+// The cheap pre-step of §7 (B1 with R = the star of one vertex, no refinement): Gauss–Seidel sweeps
+// over the free vertices of non-positive tets, moving each to the Chebyshev centre of the strict
+// kernel of its target link when that kernel is non-empty (exactly verified). A move makes every
+// tet of the vertex's star strictly positive, so the exact non-positive count never increases.
+RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked,
+                                            std::vector<double>& target_xyz, int max_sweeps = 20);
+
+}  // namespace volmap

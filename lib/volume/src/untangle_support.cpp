@@ -1,0 +1,153 @@
+// untangle_support.cpp — shared untangler machinery; see untangle_support.hpp for conventions.
+#include "untangle_support.hpp"
+
+#include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace volmap::untangle {
+
+std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
+  if (!c.ok) return tets.size() / 4;
+  return c.zero + c.negative;
+}
+
+std::vector<std::uint32_t> exact_nonpositive_tets(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  const std::size_t nt = tets.size() / 4;
+  std::vector<std::int8_t> signs(nt, 0);
+  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), nt, signs.data());
+  std::vector<std::uint32_t> bad;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!c.ok || signs[t] <= 0) bad.push_back(std::uint32_t(t));
+  return bad;
+}
+
+void FreeVertexLayout::build(std::size_t nv, const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked) {
+  free_index.assign(nv, -1);
+  free_vertices.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!locked[v]) {
+      free_index[v] = std::int64_t(free_vertices.size());
+      free_vertices.push_back(std::uint32_t(v));
+    }
+  const std::size_t nf = free_vertices.size();
+  adj_offset.assign(nf + 1, 0);
+  for (std::size_t s = 0; s < tets.size(); ++s)
+    if (free_index[tets[s]] >= 0) ++adj_offset[std::size_t(free_index[tets[s]]) + 1];
+  for (std::size_t b = 0; b < nf; ++b) adj_offset[b + 1] += adj_offset[b];
+  adj_slot.resize(adj_offset[nf]);
+  std::vector<std::uint32_t> fill(adj_offset.begin(), adj_offset.end() - 1);
+  for (std::size_t s = 0; s < tets.size(); ++s)
+    if (free_index[tets[s]] >= 0) adj_slot[fill[std::size_t(free_index[tets[s]])]++] = std::uint32_t(s);
+}
+
+void FreeVertexLayout::load(const double* vars, double* x) const {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, free_vertices.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b)
+      for (int i = 0; i < 3; ++i) x[3 * std::size_t(free_vertices[b]) + i] = vars[3 * b + i];
+  });
+}
+
+void FreeVertexLayout::extract(const double* x, double* vars) const {
+  for (std::size_t b = 0; b < free_vertices.size(); ++b)
+    for (int i = 0; i < 3; ++i) vars[3 * b + i] = x[3 * std::size_t(free_vertices[b]) + i];
+}
+
+void FreeVertexLayout::gather(const double* tet_grad, double* grad) const {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, free_vertices.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b < r.end(); ++b) {
+      double g[3] = {0, 0, 0};
+      for (std::uint32_t k = adj_offset[b]; k < adj_offset[b + 1]; ++k) {
+        const std::uint32_t s = adj_slot[k];
+        const double* src = tet_grad + 12 * std::size_t(s / 4) + 3 * std::size_t(s % 4);
+        for (int i = 0; i < 3; ++i) g[i] += src[i];
+      }
+      for (int i = 0; i < 3; ++i) grad[3 * b + i] = g[i];
+    }
+  });
+}
+
+void BoxFrame::fit(const std::vector<double>& xyz, double side, const char* who) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (std::size_t v = 0; v < xyz.size() / 3; ++v)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], xyz[3 * v + i]);
+      hi[i] = std::max(hi[i], xyz[3 * v + i]);
+    }
+  double extent = 0;
+  for (int i = 0; i < 3; ++i) {
+    center[i] = 0.5 * (lo[i] + hi[i]);
+    extent = std::max(extent, hi[i] - lo[i]);
+  }
+  if (!(extent > 0) || !std::isfinite(extent))
+    throw Error(ErrorKind::BadInput, "", 0, std::string(who) + ": degenerate or non-finite target");
+  scale = side / extent;
+}
+
+std::vector<double> BoxFrame::to_scaled(const std::vector<double>& xyz) const {
+  std::vector<double> x(xyz.size());
+  for (std::size_t v = 0; v < xyz.size() / 3; ++v)
+    for (int i = 0; i < 3; ++i) x[3 * v + i] = (xyz[3 * v + i] - center[i]) * scale;
+  return x;
+}
+
+void BoxFrame::write_back(const FreeVertexLayout& layout, const double* vars, std::vector<double>& target_xyz) const {
+  const double inv = 1.0 / scale;
+  for (std::size_t b = 0; b < layout.free_vertices.size(); ++b)
+    for (int i = 0; i < 3; ++i) target_xyz[3 * std::size_t(layout.free_vertices[b]) + i] = vars[3 * b + i] * inv + center[i];
+}
+
+LBFGSpp::LBFGSParam<double> lbfgs_param(int max_iterations, double gtol, double ftol, int linesearch) {
+  LBFGSpp::LBFGSParam<double> p;
+  p.linesearch = linesearch;
+  p.m = 7;
+  p.epsilon = gtol;
+  p.epsilon_rel = 0;
+  if (ftol > 0) {
+    p.past = 1;
+    p.delta = ftol;
+  }
+  p.max_iterations = max_iterations;
+  p.max_linesearch = 40;
+  return p;
+}
+
+void GuardedObjective::set_time_limit(Clock::time_point start, double seconds) {
+  has_deadline = seconds > 0;
+  if (has_deadline) deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+bool GuardedObjective::exactly_certified(const double* vars) {
+  frame->write_back(*layout, vars, *candidate);
+  return exact_nonpositive(*candidate, *tets) == 0;
+}
+
+double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+  ++evaluations;
+  if (past_deadline()) {
+    last_x = x;
+    throw TimeStop{};
+  }
+  bool all_positive = false;
+  const double e = evaluate(x.data(), grad.data(), &all_positive);
+  if (barrier && !all_positive) {
+    grad.setZero();
+    return std::numeric_limits<double>::infinity();
+  }
+  if (stop_when_certified && all_positive && evaluations >= next_exact_check) {
+    if (exactly_certified(x.data())) {
+      last_x = x;
+      throw CertifiedStop{};
+    }
+    next_exact_check = evaluations + check_period;
+  }
+  return e;
+}
+
+}  // namespace volmap::untangle

@@ -1,0 +1,362 @@
+// Exact triangle-surface self-intersection test: tiny hand-built configurations with known answers,
+// and randomized comparison against an independent exact oracle (a rational linear program solved by
+// enumerating basic solutions), plus the accelerated driver against brute force over all pairs.
+#include <doctest/doctest.h>
+#include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/check/self_intersection.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+using volmap::find_self_intersections;
+using volmap::Rational;
+
+namespace {
+
+struct Soup {
+  std::vector<double> xyz;
+  std::vector<std::uint32_t> tris;
+  std::uint32_t v(double x, double y, double z) {
+    xyz.insert(xyz.end(), {x, y, z});
+    return std::uint32_t(xyz.size() / 3 - 1);
+  }
+  void t(std::uint32_t a, std::uint32_t b, std::uint32_t c) { tris.insert(tris.end(), {a, b, c}); }
+};
+
+// ---- oracle: points of closed T1 ∩ closed T2 as the feasible set of
+//   alpha, beta >= 0, sum alpha = 1, sum beta = 1, sum alpha_i P_i - sum beta_j Q_j = 0.
+// Returns false when infeasible; otherwise the min and max of alpha[k] over the set (attained at
+// basic feasible solutions, enumerated over all column subsets with exact rational elimination).
+struct OracleRange {
+  bool feasible = false;
+  Rational min_alpha[3], max_alpha[3];
+};
+
+OracleRange oracle(const double* P[3], const double* Q[3]) {
+  Rational A[5][6];
+  for (int j = 0; j < 3; ++j) {
+    A[0][j] = 1;
+    A[1][j] = 0;
+    A[0][3 + j] = 0;
+    A[1][3 + j] = 1;
+    for (int k = 0; k < 3; ++k) {
+      A[2 + k][j] = Rational(P[j][k]);
+      A[2 + k][3 + j] = -Rational(Q[j][k]);
+    }
+  }
+  const Rational rhs[5] = {1, 1, 0, 0, 0};
+  OracleRange out;
+  for (int subset = 1; subset < 64; ++subset) {
+    int cols[6], n = 0;
+    for (int j = 0; j < 6; ++j)
+      if (subset & (1 << j)) cols[n++] = j;
+    Rational M[5][7];
+    for (int r = 0; r < 5; ++r) {
+      for (int c = 0; c < n; ++c) M[r][c] = A[r][cols[c]];
+      M[r][n] = rhs[r];
+    }
+    // Gaussian elimination; require full column rank and consistency.
+    int row = 0;
+    bool independent = true;
+    int pivot_row[6];
+    for (int c = 0; c < n; ++c) {
+      int p = -1;
+      for (int r = row; r < 5; ++r)
+        if (M[r][c] != 0) {
+          p = r;
+          break;
+        }
+      if (p < 0) {
+        independent = false;
+        break;
+      }
+      for (int k = 0; k <= n; ++k) std::swap(M[row][k], M[p][k]);
+      for (int r = 0; r < 5; ++r) {
+        if (r == row || M[r][c] == 0) continue;
+        const Rational f = M[r][c] / M[row][c];
+        for (int k = 0; k <= n; ++k) M[r][k] -= f * M[row][k];
+      }
+      pivot_row[c] = row++;
+    }
+    if (!independent) continue;
+    bool consistent = true;
+    for (int r = row; r < 5; ++r)
+      if (M[r][n] != 0) consistent = false;
+    if (!consistent) continue;
+    Rational x[6];
+    bool nonnegative = true;
+    for (int c = 0; c < n; ++c) {
+      x[cols[c]] = M[pivot_row[c]][n] / M[pivot_row[c]][c];
+      if (x[cols[c]] < 0) nonnegative = false;
+    }
+    if (!nonnegative) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (!out.feasible || x[k] < out.min_alpha[k]) out.min_alpha[k] = x[k];
+      if (!out.feasible || x[k] > out.max_alpha[k]) out.max_alpha[k] = x[k];
+    }
+    out.feasible = true;
+  }
+  return out;
+}
+
+// Oracle answer for "t and u intersect other than in what they share by id".
+bool oracle_pair(const std::vector<double>& xyz, const std::uint32_t* t, const std::uint32_t* u) {
+  const double* P[3] = {&xyz[3 * t[0]], &xyz[3 * t[1]], &xyz[3 * t[2]]};
+  const double* Q[3] = {&xyz[3 * u[0]], &xyz[3 * u[1]], &xyz[3 * u[2]]};
+  int shared_mask = 0, shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (t[i] == u[j]) {
+        shared_mask |= 1 << i;
+        ++shared;
+      }
+  const OracleRange r = oracle(P, Q);
+  if (!r.feasible) return false;
+  if (shared == 0 || shared == 3) return true;
+  if (shared == 1) {
+    int a = 0;
+    while (!(shared_mask & (1 << a))) ++a;
+    return r.min_alpha[a] < 1;  // a point of t other than its corner a
+  }
+  int c = 0;
+  while (shared_mask & (1 << c)) ++c;
+  return r.max_alpha[c] > 0;  // a point of t off the shared edge
+}
+
+// Closed bounding boxes of triangles i and j overlap (exact double comparisons).
+bool boxes_overlap(const Soup& s, std::size_t i, std::size_t j) {
+  for (int k = 0; k < 3; ++k) {
+    double lo[2], hi[2];
+    const std::size_t tri[2] = {i, j};
+    for (int m = 0; m < 2; ++m) {
+      lo[m] = hi[m] = s.xyz[3 * s.tris[3 * tri[m]] + k];
+      for (int c = 1; c < 3; ++c) {
+        lo[m] = std::min(lo[m], s.xyz[3 * s.tris[3 * tri[m] + c] + k]);
+        hi[m] = std::max(hi[m], s.xyz[3 * s.tris[3 * tri[m] + c] + k]);
+      }
+    }
+    if (lo[0] > hi[1] || lo[1] > hi[0]) return false;
+  }
+  return true;
+}
+
+bool pair_intersects(const Soup& s, int i, int j) {
+  return volmap::triangle_pair_intersects(s.xyz.data(), &s.tris[3 * i], &s.tris[3 * j]);
+}
+
+}  // namespace
+
+TEST_CASE("two crossing triangles (no shared vertex) intersect") {
+  Soup s;
+  s.t(s.v(0, 0, 0), s.v(2, 0, 0), s.v(0, 2, 0));
+  s.t(s.v(0.5, 0.5, -1), s.v(0.5, 0.5, 1), s.v(3, 3, 0.25));
+  CHECK(pair_intersects(s, 0, 1));
+  const auto r = find_self_intersections(s.xyz, s.tris);
+  CHECK(r.intersecting_pairs == 1);
+  REQUIRE(r.first_pairs.size() == 1);
+  CHECK(r.first_pairs[0] == volmap::TrianglePair{0, 1});
+  CHECK_FALSE(r.clean());
+}
+
+TEST_CASE("separated and barely separated triangles do not intersect") {
+  Soup s;
+  s.t(s.v(0, 0, 0), s.v(1, 0, 0), s.v(0, 1, 0));
+  // Above the plane by the smallest double step: a float tolerance would call this touching.
+  const double z = std::nextafter(0.0, 1.0);
+  s.t(s.v(0.1, 0.1, z), s.v(0.5, 0.1, z), s.v(0.1, 0.5, 1));
+  CHECK_FALSE(pair_intersects(s, 0, 1));
+  CHECK(find_self_intersections(s.xyz, s.tris).clean());
+}
+
+TEST_CASE("touching at a point counts when no vertex id is shared") {
+  Soup s;
+  s.t(s.v(0, 0, 0), s.v(2, 0, 0), s.v(0, 2, 0));
+  // A vertex of the second triangle lies exactly inside the first.
+  s.t(s.v(0.5, 0.5, 0), s.v(0.5, 0.5, 1), s.v(1, 0.7, 1));
+  CHECK(pair_intersects(s, 0, 1));
+  // Vertex to vertex at the same position but distinct ids: coincident vertices.
+  Soup c;
+  c.v(0, 0, 0);
+  c.v(1, 0, 0);
+  c.v(0, 1, 0);
+  c.v(0, 0, 0);  // 3 coincides with 0
+  c.v(-1, 0, 1);
+  c.v(0, -1, 1);
+  c.t(0, 1, 2);
+  c.t(3, 4, 5);
+  const auto r = find_self_intersections(c.xyz, c.tris);
+  CHECK(r.coincident_vertices == 1);
+  CHECK(r.intersecting_pairs == 1);
+  REQUIRE(r.first_coincident.size() == 1);
+  CHECK(r.first_coincident[0].first == 0);
+  CHECK(r.first_coincident[0].second == 3);
+}
+
+TEST_CASE("a shared vertex: touching only there is fine, overlap or piercing is not") {
+  Soup s;
+  const auto a = s.v(0, 0, 0), b = s.v(1, 0, 0), c = s.v(0, 1, 0);
+  s.t(a, b, c);
+  s.t(a, s.v(-1, 0, 1), s.v(0, -1, 1));      // 1: only a in common
+  s.t(a, s.v(0.5, 0.2, 0), s.v(0.2, 0.5, 0)); // 2: coplanar, inside t's corner
+  s.t(a, s.v(0.3, 0.3, 1), s.v(0.3, 0.3, -1)); // 3: crosses t's plane inside its corner
+  s.t(a, s.v(-1, 0, 0), s.v(0, -1, 0));      // 4: coplanar, opposite corner (vertical angle)
+  s.t(a, s.v(-1, -1, 1), s.v(-1, -1, -1));   // 5: crosses the plane outside the corner
+  s.t(a, s.v(2, 0, 0), s.v(2, 0, 1));        // 6: runs along edge ab (shares a segment)
+  CHECK_FALSE(pair_intersects(s, 0, 1));
+  CHECK(pair_intersects(s, 0, 2));
+  CHECK(pair_intersects(s, 0, 3));
+  CHECK_FALSE(pair_intersects(s, 0, 4));
+  CHECK_FALSE(pair_intersects(s, 0, 5));
+  CHECK(pair_intersects(s, 0, 6));
+  CHECK(pair_intersects(s, 6, 0));
+}
+
+TEST_CASE("a shared edge: a proper hinge is fine, a fold onto itself is not") {
+  Soup s;
+  const auto a = s.v(0, 0, 0), b = s.v(1, 0, 0), c = s.v(0, 1, 0);
+  s.t(a, b, c);
+  s.t(b, a, s.v(0.5, -1, 0));  // 1: flat continuation across ab
+  s.t(b, a, s.v(0.5, 0.5, 1)); // 2: hinge
+  s.t(b, a, s.v(0.3, 0.2, 0)); // 3: folded back onto t, coplanar
+  s.t(a, b, s.v(3, 5, 0));     // 4: folded, covering t partially
+  CHECK_FALSE(pair_intersects(s, 0, 1));
+  CHECK_FALSE(pair_intersects(s, 0, 2));
+  CHECK(pair_intersects(s, 0, 3));
+  CHECK(pair_intersects(s, 4, 0));
+  // Same three ids twice.
+  Soup d;
+  const auto p = d.v(0, 0, 0), q = d.v(1, 0, 0), r = d.v(0, 1, 0);
+  d.t(p, q, r);
+  d.t(r, q, p);
+  CHECK(pair_intersects(d, 0, 1));
+}
+
+TEST_CASE("coplanar overlap without shared ids, and coplanar disjoint") {
+  Soup s;
+  s.t(s.v(0, 0, 0), s.v(4, 0, 0), s.v(0, 4, 0));
+  s.t(s.v(1, 1, 0), s.v(5, 1, 0), s.v(1, 5, 0));  // overlapping
+  s.t(s.v(3, 3, 0), s.v(6, 3, 0), s.v(3, 6, 0));  // beyond the hypotenuse of 0 (x+y>4), overlaps 1
+  s.t(s.v(2, 2, 0), s.v(6, 2, 0), s.v(2, 6, 0));  // touches triangle 0 at (2,2) only
+  CHECK(pair_intersects(s, 0, 1));
+  CHECK_FALSE(pair_intersects(s, 0, 2));
+  CHECK(pair_intersects(s, 1, 2));
+  CHECK(pair_intersects(s, 0, 3));
+}
+
+TEST_CASE("degenerate triangles are reported") {
+  Soup s;
+  s.t(s.v(0, 0, 0), s.v(1, 1, 1), s.v(2, 2, 2));
+  s.t(s.v(5, 0, 0), s.v(6, 0, 0), s.v(5, 1, 0));
+  s.t(4, 4, 5);
+  const auto r = find_self_intersections(s.xyz, s.tris);
+  CHECK(r.degenerate_triangles == 2);
+  CHECK(r.first_degenerate == std::vector<std::uint32_t>{0, 2});
+  CHECK(volmap::triangle_is_degenerate(&s.xyz[0], &s.xyz[3], &s.xyz[6]));
+}
+
+TEST_CASE("closed polyhedra are clean; a dented one is not") {
+  Soup s;  // octahedron
+  const auto px = s.v(1, 0, 0), nx = s.v(-1, 0, 0), py = s.v(0, 1, 0), ny = s.v(0, -1, 0), pz = s.v(0, 0, 1),
+             nz = s.v(0, 0, -1);
+  const std::uint32_t faces[8][3] = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz},
+                                     {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
+  for (auto& f : faces) s.t(f[0], f[1], f[2]);
+  auto r = find_self_intersections(s.xyz, s.tris);
+  CHECK(r.clean());
+  CHECK(r.candidate_pairs == 8 * 7 / 2);  // every box overlaps (they all contain the origin's axes)
+  // A second octahedron shifted by half its size intersects the first (and nothing is shared).
+  const std::uint32_t offset = std::uint32_t(s.xyz.size() / 3);
+  for (std::size_t i = 0; i < 6; ++i) s.v(s.xyz[3 * i] + 0.5, s.xyz[3 * i + 1], s.xyz[3 * i + 2]);
+  for (auto& f : faces) s.t(f[0] + offset, f[1] + offset, f[2] + offset);
+  r = find_self_intersections(s.xyz, s.tris);
+  CHECK(r.intersecting_pairs > 0);
+  CHECK(r.coincident_vertices == 0);
+  CHECK_THROWS_AS(find_self_intersections(s.xyz.data(), 5, s.tris.data(), 8), volmap::Error);
+}
+
+TEST_CASE("randomized: pair test equals an exact LP oracle on grid points (many degeneracies)") {
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<int> coord(0, 2);
+  int checked = 0, positives = 0, by_shared[3] = {0, 0, 0};
+  for (int iter = 0; iter < 4000; ++iter) {
+    Soup s;
+    for (int i = 0; i < 6; ++i) s.v(coord(rng), coord(rng), coord(rng));
+    // t uses 0,1,2; u shares 0, 1 or 2 ids.
+    const int shared = iter % 3;
+    std::uint32_t t[3] = {0, 1, 2};
+    std::uint32_t u[3] = {3, 4, 5};
+    for (int k = 0; k < shared; ++k) u[k] = t[k];
+    std::shuffle(u, u + 3, rng);
+    const double* X = s.xyz.data();
+    if (volmap::triangle_is_degenerate(X + 3 * t[0], X + 3 * t[1], X + 3 * t[2]) ||
+        volmap::triangle_is_degenerate(X + 3 * u[0], X + 3 * u[1], X + 3 * u[2]))
+      continue;
+    const bool expected = oracle_pair(s.xyz, t, u);
+    const bool got = volmap::triangle_pair_intersects(X, t, u);
+    const bool got_swapped = volmap::triangle_pair_intersects(X, u, t);
+    INFO("iter " << iter << " shared " << shared);
+    CHECK(got == expected);
+    CHECK(got_swapped == expected);
+    ++checked;
+    positives += expected;
+    ++by_shared[shared];
+  }
+  MESSAGE("checked " << checked << " pairs, " << positives << " intersecting");
+  CHECK(checked > 1000);
+  CHECK(positives > 100);
+  CHECK(checked - positives > 100);
+  CHECK(by_shared[1] > 200);
+  CHECK(by_shared[2] > 200);
+}
+
+TEST_CASE("randomized: the accelerated driver finds exactly the brute-force pairs") {
+  // Jittered grid vertices; small triangles between grid neighbours, some sharing ids, many crossing.
+  std::mt19937 rng(777);
+  std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+  constexpr int G = 10;
+  Soup s;
+  for (int x = 0; x < G; ++x)
+    for (int y = 0; y < G; ++y)
+      for (int z = 0; z < G; ++z) s.v(x + jitter(rng), y + jitter(rng), z + jitter(rng));
+  auto id = [&](int x, int y, int z) { return std::uint32_t((x * G + y) * G + z); };
+  std::uniform_int_distribution<int> cell(0, G - 2), bit(0, 1);
+  for (int i = 0; i < 2500; ++i) {
+    const int x = cell(rng), y = cell(rng), z = cell(rng);
+    std::uint32_t c[3];
+    do {
+      for (auto& v : c) v = id(x + bit(rng), y + bit(rng), z + bit(rng));
+    } while (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]);
+    s.t(c[0], c[1], c[2]);
+  }
+  const std::size_t n = s.tris.size() / 3;
+  std::size_t brute = 0;
+  std::vector<volmap::TrianglePair> first;
+  std::vector<char> degenerate(n);
+  for (std::size_t i = 0; i < n; ++i)
+    degenerate[i] = volmap::triangle_is_degenerate(&s.xyz[3 * s.tris[3 * i]], &s.xyz[3 * s.tris[3 * i + 1]],
+                                                   &s.xyz[3 * s.tris[3 * i + 2]]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (degenerate[i] || degenerate[j] || !boxes_overlap(s, i, j)) continue;
+      if (volmap::triangle_pair_intersects(s.xyz.data(), &s.tris[3 * i], &s.tris[3 * j])) {
+        ++brute;
+        if (first.size() < 5) first.push_back({std::uint32_t(i), std::uint32_t(j)});
+      }
+    }
+  volmap::SelfIntersectionOptions options;
+  options.max_reported = 5;
+  for (bool parallel : {false, true}) {
+    options.parallel = parallel;
+    const auto r = find_self_intersections(s.xyz, s.tris, options);
+    CHECK(r.intersecting_pairs == brute);
+    CHECK(r.first_pairs == first);
+    CHECK(r.candidate_pairs < n * (n - 1) / 50);  // the hierarchy prunes
+  }
+  MESSAGE(n << " triangles, " << brute << " intersecting pairs");
+  CHECK(brute > 0);
+}

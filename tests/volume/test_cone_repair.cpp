@@ -1,0 +1,360 @@
+// B1 star-patch cone repair (docs/mapping.md §7, original vertices kept): hand-made Kuhn-grid cases
+// with inverted vertex stars are repaired with every original vertex kept at its source position and
+// the refined source a valid positive tetrahedralisation with the same boundary faces; impossible
+// cases fail and leave everything unchanged; volmap-map never reports a false success; one small G1
+// pair that fails at fixed connectivity is certified with refinement (data test).
+#include <doctest/doctest.h>
+
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/volume/cone_repair.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/check/tetmesh_checks.hpp>
+
+#include "map_test_meshes.hpp"
+#include "test_support.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <tuple>
+#include <sys/wait.h>
+
+namespace {
+
+std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
+  return c.zero + c.negative;
+}
+
+std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const volmap::TetMeshData& m) {
+  std::vector<std::array<std::uint32_t, 3>> out;
+  for (auto hf : volmap::boundary_half_faces(m)) {
+    auto f = volmap::half_face_vertices(m, hf);
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());  // keeps the orientation
+    out.push_back(f);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+int grid_id(int n, int i, int j, int k) { return (i * (n + 1) + j) * (n + 1) + k; }
+
+// The repaired pair is a valid refinement: original vertices kept bit-exactly, exact positive source
+// and target, same oriented boundary triangles, boundary targets untouched, manifold genus-0 mesh.
+void check_refinement(const volmap::TetMeshData& before, const std::vector<double>& target_before, const std::vector<std::uint8_t>& bnd_before,
+                      const volmap::TetMeshData& after, const std::vector<double>& target_after, const std::vector<std::uint8_t>& bnd_after) {
+  REQUIRE(after.num_vertices() >= before.num_vertices());
+  REQUIRE(target_after.size() == after.xyz.size());
+  REQUIRE(bnd_after.size() == after.num_vertices());
+  CHECK(std::equal(before.xyz.begin(), before.xyz.end(), after.xyz.begin()));
+  for (std::size_t v = 0; v < before.num_vertices(); ++v) {
+    CHECK(bnd_after[v] == bnd_before[v]);
+    if (bnd_before[v])
+      for (int i = 0; i < 3; ++i) CHECK(target_after[3 * v + i] == target_before[3 * v + i]);
+  }
+  for (std::size_t v = before.num_vertices(); v < after.num_vertices(); ++v) CHECK(bnd_after[v] == 0);
+  CHECK(exact_bad(after.xyz, after.tets) == 0);
+  CHECK(exact_bad(target_after, after.tets) == 0);
+  CHECK(boundary_triangles(after) == boundary_triangles(before));
+  CHECK(after.tet_labels.size() == after.num_tets());
+  const auto report = volmap::check_tet_mesh(after);
+  for (const auto& c : report.checks) CHECK_MESSAGE(c.passed, c.key << ": " << c.detail);
+}
+
+// A Kuhn grid with its boundary flags and a target to displace (…0: the state before the repair),
+// and a fresh copy repaired by repair() (m, bnd, target: the state after).
+struct GridCase {
+  explicit GridCase(int n) : m0(map_test::kuhn_grid(n)), bnd0(map_test::grid_boundary_flags(n)), target0(m0.xyz) {}
+  volmap::ConeRepairResult repair(const volmap::ConeRepairOptions& options = {}) {
+    m = m0;
+    bnd = bnd0;
+    target = target0;
+    return volmap::cone_repair(m, bnd, target, options);
+  }
+  volmap::TetMeshData m0;
+  std::vector<std::uint8_t> bnd0;
+  std::vector<double> target0;
+  volmap::TetMeshData m;
+  std::vector<std::uint8_t> bnd;
+  std::vector<double> target;
+};
+
+}  // namespace
+
+TEST_CASE("cone repair: one inverted vertex star in a Kuhn grid is repaired with original vertices kept") {
+  const int n = 4;
+  GridCase c(n);
+  const auto& [m0, bnd0, target0] = std::tie(c.m0, c.bnd0, c.target0);
+  const int v = grid_id(n, 2, 2, 2);
+  for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;  // past its neighbours (spacing 0.25): star inverted
+  const std::size_t bad0 = exact_bad(target0, m0.tets);
+  REQUIRE(bad0 > 0);
+  const auto r = c.repair();
+  const auto& [m, bnd, target] = std::tie(c.m, c.bnd, c.target);
+  CHECK(r.clusters >= 1);
+  CHECK(r.patches >= 1);
+  CHECK(r.failed_clusters == 0);
+  CHECK(r.tets_before == m0.num_tets());
+  CHECK(r.tets_after == m.num_tets());
+  CHECK(r.vertices_added == m.num_vertices() - m0.num_vertices());
+  CHECK(r.vertices_added <= r.patches);  // at most one apex per patch
+  CHECK(r.max_region > 0);
+  // Growth: each kept interior vertex of R costs a few tets (1→4 adds 3, 2→6 adds 4, n→2n adds n).
+  // (the cones over ∂R may be fewer than R's tets, so the count can also shrink)
+  CHECK(m.num_tets() <= m0.num_tets() + 8 * r.max_region);
+  check_refinement(m0, target0, bnd0, m, target, bnd);
+  MESSAGE("one star: " << bad0 << " inverted, region " << r.max_region << ", tets " << m0.num_tets() << " -> " << m.num_tets()
+                       << ", vertices +" << r.vertices_added);
+}
+
+TEST_CASE("cone repair: a free vertex pushed across a concave boundary valley is repaired with and without aimed growth") {
+  // Target: the unit-cube Kuhn grid with z scaled by 1 + 2|x − 0.5| (piecewise linear on the grid, so
+  // positive): the top is a V-shaped valley along x = 0.5 (reflex edge, like the valleys between the
+  // spikes of the star domain). The free vertex just below the valley is pushed up across the plane
+  // of the valley's top faces. (This small case is solved by the LP growth already; the aimed growth
+  // must leave it a valid refinement too. The LP-growth failure it was made for, G1 ramses star, is
+  // described in cone_repair.cpp.)
+  const int n = 6;
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  for (std::size_t u = 0; u < m0.num_vertices(); ++u) target0[3 * u + 2] *= 1 + 2 * std::abs(target0[3 * u] - 0.5);
+  REQUIRE(exact_bad(target0, m0.tets) == 0);
+  const int v = grid_id(n, 5, 3, 3);  // (0.5, 0.5, 5/6): the first index runs along z
+  REQUIRE(m0.xyz[3 * v + 0] == doctest::Approx(0.5));
+  REQUIRE(m0.xyz[3 * v + 1] == doctest::Approx(0.5));
+  REQUIRE(m0.xyz[3 * v + 2] == doctest::Approx(5.0 / 6.0));
+  target0[3 * v + 0] += 0.4;
+  target0[3 * v + 2] += 1.0;
+  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  for (bool aimed : {false, true}) {
+    auto m = m0;
+    auto bnd = bnd0;
+    auto target = target0;
+    volmap::ConeRepairOptions o;
+    o.aimed_growth = aimed;
+    const auto r = volmap::cone_repair(m, bnd, target, o);
+    CHECK(r.failed_clusters == 0);
+    CHECK(r.patches >= 1);
+    check_refinement(m0, target0, bnd0, m, target, bnd);
+  }
+}
+
+TEST_CASE("cone repair: the only interior vertex of a convex grid becomes the apex (no growth)") {
+  const int n = 2;  // one interior vertex (1,1,1); every tet has a boundary face or touches ∂M
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  const int v = grid_id(n, 1, 1, 1);
+  target0[3 * v + 0] = 0.95;  // near a corner: part of its star inverted
+  target0[3 * v + 1] = 0.95;
+  target0[3 * v + 2] = 0.05;
+  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  auto m = m0;
+  auto bnd = bnd0;
+  auto target = target0;
+  const auto r = volmap::cone_repair(m, bnd, target);
+  CHECK(r.patches == 1);
+  CHECK(r.failed_clusters == 0);
+  // R is the whole cube (stars of boundary vertices); its only interior vertex is in the source kernel
+  // (the cube is convex), so it is the apex: connectivity = the cones over the 48 boundary triangles.
+  CHECK(r.vertices_added == 0);
+  CHECK(m.num_tets() == 48);
+  check_refinement(m0, target0, bnd0, m, target, bnd);
+}
+
+TEST_CASE("cone repair: an exhausted time limit leaves the mesh and map exactly as they were") {
+  const int n = 6;
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3)})
+    for (int i = 0; i < 3; ++i) target0[3 * c + i] += 0.3;
+  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  auto m = m0;
+  auto bnd = bnd0;
+  auto target = target0;
+  volmap::ConeRepairOptions o;
+  o.time_limit_seconds = 1e-12;  // already over when the first cluster would start
+  const auto r = volmap::cone_repair(m, bnd, target, o);
+  CHECK(r.patches == 0);
+  CHECK(r.failed_clusters == r.clusters);
+  CHECK(r.clusters > 0);
+  CHECK(m.tets == m0.tets);
+  CHECK(m.xyz == m0.xyz);
+  CHECK(target == target0);
+  CHECK(bnd == bnd0);
+  // The same state without the limit is repaired.
+  const auto r2 = volmap::cone_repair(m, bnd, target);
+  CHECK(r2.failed_clusters == 0);
+  CHECK(exact_bad(target, m.tets) == 0);
+}
+
+TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired") {
+  const int n = 6;
+  GridCase gc(n);
+  const auto& [m0, bnd0, target0] = std::tie(gc.m0, gc.bnd0, gc.target0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.25, 0.25);
+  for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3), grid_id(n, 2, 5, 4), grid_id(n, 3, 3, 1), grid_id(n, 5, 5, 5)})
+    for (int i = 0; i < 3; ++i) gc.target0[3 * c + i] += u(rng);
+  const std::size_t bad0 = exact_bad(target0, m0.tets);
+  REQUIRE(bad0 > 0);
+  const auto r = gc.repair();
+  const auto& [m, bnd, target] = std::tie(gc.m, gc.bnd, gc.target);
+  CHECK(r.failed_clusters == 0);
+  CHECK(r.patches >= 1);
+  CHECK(r.attempts >= r.patches);
+  CHECK(r.growth_steps >= r.patches);
+  CHECK(r.lp_solves >= 2 * r.patches);  // a patch needs a verified kernel point in both spaces
+  check_refinement(m0, target0, bnd0, m, target, bnd);
+  for (int variant = 0; variant < 2; ++variant) {
+    auto m2 = m0;
+    auto bnd2 = bnd0;
+    auto target2 = target0;
+    volmap::ConeRepairOptions o;
+    if (variant == 0) o.stall_growth_steps = 0;  // no stall limit
+    if (variant == 1) o.growth_lookahead = 1;    // plain most-violated-face growth
+    const auto r2 = volmap::cone_repair(m2, bnd2, target2, o);
+    CHECK(r2.failed_clusters == 0);
+    check_refinement(m0, target0, bnd0, m2, target2, bnd2);
+    if (variant == 0) {  // the stall limit only cuts failing growth: the same patches are applied
+      CHECK(r2.patches == r.patches);
+      CHECK(m2.tets == m.tets);
+      CHECK(target2 == target);
+    } else {
+      CHECK(r2.lp_solves <= r.lp_solves);  // the lookahead solves extra LPs per growth step
+    }
+  }
+  MESSAGE("scrambled: " << bad0 << " inverted in " << r.clusters << " clusters, " << r.patches << " patches, tets " << m0.num_tets()
+                        << " -> " << m.num_tets());
+}
+
+TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged") {
+  // TODO: corner (0,0,0) at 0.9 turned out NOT to be impossible (B1 certifies it; a kernel exists):
+  // needs a truly kernel-free case. Disabled until then.
+  if (false) {
+    const int n = 2;
+    const auto m0 = map_test::kuhn_grid(n);
+    auto bnd = map_test::grid_boundary_flags(n);
+    auto target0 = m0.xyz;
+    for (int i = 0; i < 3; ++i) target0[i] = 0.9;  // corner (0,0,0) pushed through the cube
+    REQUIRE(exact_bad(target0, m0.tets) > 0);
+    auto m = m0;
+    auto target = target0;
+    const auto bnd0 = bnd;
+    const auto r = volmap::cone_repair(m, bnd, target);
+    CHECK(r.failed_clusters > 0);
+    CHECK(r.patches == 0);
+    CHECK(m.tets == m0.tets);
+    CHECK(m.xyz == m0.xyz);
+    CHECK(m.tet_labels == m0.tet_labels);
+    CHECK(target == target0);
+    CHECK(bnd == bnd0);
+  }
+  SUBCASE("region limit too small") {
+    const int n = 4;
+    GridCase c(n);
+    const int v = grid_id(n, 2, 2, 2);
+    for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;
+    volmap::ConeRepairOptions o;
+    o.max_region_tets = 4;
+    const auto r = c.repair(o);
+    const auto& [m0, target0, m, target] = std::tie(c.m0, c.target0, c.m, c.target);
+    CHECK(r.failed_clusters > 0);
+    CHECK(r.patches == 0);
+    CHECK(m.tets == m0.tets);
+    CHECK(m.xyz == m0.xyz);
+    CHECK(target == target0);
+    // Diagnostics: every failed attempt has exactly one reason, here the region limit.
+    CHECK(r.attempts == r.failures.region_limit);
+    CHECK(r.failures.last_no_target + r.failures.last_no_source <= r.failures.region_limit);
+    CHECK(r.failures.reinsertion + r.failures.not_positive + r.failures.face_mismatch + r.failures.budget == 0);
+  }
+  SUBCASE("tet budget too small") {
+    const int n = 4;
+    GridCase gc(n);
+    for (int c : {grid_id(n, 2, 2, 2), grid_id(n, 1, 2, 2)})
+      for (int i = 0; i < 3; ++i) gc.target0[3 * c + i] += 0.3;
+    volmap::ConeRepairOptions o;
+    o.max_added_tets = 1;
+    const auto r = gc.repair(o);
+    const auto& [m0, m, target] = std::tie(gc.m0, gc.m, gc.target);
+    // Whatever was applied stayed within the budget and valid; the rest is left as it was.
+    CHECK(long(m.num_tets()) - long(m0.num_tets()) <= 1);
+    CHECK(exact_bad(m.xyz, m.tets) == 0);
+    if (r.failed_clusters == 0) CHECK(exact_bad(target, m.tets) == 0);
+  }
+}
+
+// An impossible case even with refinement: the boundary map mirrors the unit cube (x -> 1 - x).
+// The image surface is embedded but reversed, so the signed volumes of any tetrahedralisation
+// mapped with it sum to minus the cube's volume: no map with every tet positive exists, however
+// the mesh is refined. The mapper must say so (exit 1, "certified": false) within its time limit.
+TEST_CASE("volmap-map: no false success with refinement allowed when the boundary map is mirrored (exit 1)") {
+  const auto tool = volmap_test::tool("volmap-map");
+  if (!std::filesystem::exists(tool)) {
+    MESSAGE("skipped: volmap-map not built");
+    return;
+  }
+  const int n = 3;
+  const auto m = map_test::kuhn_grid(n);
+  const auto bnd = map_test::grid_boundary_flags(n);
+  volmap::BoundaryMap map;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    if (bnd[v]) {
+      map.vids.push_back(std::uint32_t(v));
+      map.xyz.push_back(1.0 - m.xyz[3 * v]);
+      map.xyz.push_back(m.xyz[3 * v + 1]);
+      map.xyz.push_back(m.xyz[3 * v + 2]);
+    }
+  const auto dir = volmap_test::scratch_dir("cone_repair_nfs");
+  volmap::write_medit((dir / "in.mesh").string(), m);
+  volmap::write_boundary_map((dir / "map.txt").string(), map);
+  const std::string cmd = tool.string() + " " + (dir / "in.mesh").string() + " " + (dir / "map.txt").string() + " " +
+                          (dir / "out.mesh").string() + " --refined-input " + (dir / "ref.mesh").string() +
+                          " --time-limit 3 --threads 1 --json > " + (dir / "out.json").string() + " 2>/dev/null";
+  const int rc = std::system(cmd.c_str());
+  CHECK(WEXITSTATUS(rc) == 1);
+  std::ifstream json_file(dir / "out.json");
+  const std::string json((std::istreambuf_iterator<char>(json_file)), std::istreambuf_iterator<char>());
+  CHECK(json.find("\"certified\":false") != std::string::npos);
+  CHECK(json.find("\"certified\":true") == std::string::npos);
+  CHECK(json.find("\"boundary_volume_sign\":-1") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("volmap-map: G1 bone octa is certified with refinement within 5 % growth and map-check agrees") {
+  VOLMAP_REQUIRE_DATA(mesh, "volmap/G1/bone.mesh");
+  VOLMAP_REQUIRE_DATA(mp, "volmap/G1_octa/bone_octa.txt");
+  const auto tool = volmap_test::tool("volmap-map"), check = volmap_test::tool("volmap-map-check");
+  if (!std::filesystem::exists(tool) || !std::filesystem::exists(check)) {
+    MESSAGE("skipped: volmap-map / volmap-map-check not built");
+    return;
+  }
+  const auto dir = volmap_test::scratch_dir("cone_repair_bone");
+  const std::string out = (dir / "out.mesh").string(), ref = (dir / "ref.mesh").string(), js = (dir / "r.json").string();
+  const std::string cmd = tool.string() + " " + mesh.string() + " " + mp.string() + " " + out + " --refined-input " + ref +
+                          " --threads 1 --time-limit 20 --no-quality --json > " + js + " 2>/dev/null";
+  const int rc = std::system(cmd.c_str());
+  const auto j = nlohmann::json::parse(volmap_test::read_bytes(js), nullptr, false);
+  REQUIRE(!j.is_discarded());
+  MESSAGE("bone octa: " << j.dump());
+  CHECK(WEXITSTATUS(rc) == 0);
+  CHECK(j.value("certified", false));
+  CHECK(j.value("growth", 1.0) <= 0.05);
+  const std::string src = j.value("refined", false) ? ref : mesh.string();
+  const int rc2 = std::system((check.string() + " " + src + " " + out + " --boundary " + mp.string() + " --absolute > /dev/null 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc2) == 0);
+  std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,308 @@
+// volmap-map stages on small cases: feasibility (all-boundary tets, chords), B0 chord splitting
+// (children exactly positive, ids kept), the full pipeline on synthetic and real small maps (TLC
+// cube, Floater–Pham-Trong 7-vertex Tutte counterexample), TLC, and the no-false-success property
+// of the tool (a fixed inverted all-boundary tet with refinement disabled must give exit 1).
+#include <doctest/doctest.h>
+
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/volume/chord_split.hpp>
+#include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/ffm.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/volume/tlc.hpp>
+#include <volmap/volume/tutte3d.hpp>
+#include <volmap/volume/volume_map.hpp>
+
+#include "map_test_meshes.hpp"
+#include "test_support.hpp"
+
+#include <cstdlib>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace {
+
+std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
+  return c.zero + c.negative;
+}
+
+volmap::BoundaryMap map_of(const std::vector<std::uint8_t>& bnd, const std::vector<double>& target) {
+  volmap::BoundaryMap m;
+  for (std::size_t v = 0; v < bnd.size(); ++v)
+    if (bnd[v]) {
+      m.vids.push_back(std::uint32_t(v));
+      for (int i = 0; i < 3; ++i) m.xyz.push_back(target[3 * v + i]);
+    }
+  return m;
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("volmap_test_map_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("feasibility: Kuhn cube has one chord edge (the diagonal) and six chord faces, none blocking") {
+  auto m = map_test::kuhn_grid(1);
+  std::vector<std::uint8_t> bnd(8, 1);
+  auto r = volmap::analyze_feasibility(m, bnd, m.xyz);
+  CHECK(r.chord_edges.size() == 1);
+  CHECK(r.chord_edges[0] == std::array<std::uint32_t, 2>{0, 7});
+  CHECK(r.chord_faces.size() == 6);
+  CHECK(r.blocking_chord_edges.empty());
+  CHECK(r.blocking_chord_faces.empty());
+  CHECK(r.all_boundary_tets == 6);
+  CHECK(r.fixed_nonpositive_tets.empty());
+  CHECK(!r.infeasible_at_fixed_connectivity());
+  // Flatten the far corner (1,1,1) onto the plane z = 1 through (0,0,1)...: the diagonal's image
+  // now lies in the top facet plane -> blocking chord edge, and tets become fixed non-positive.
+  auto t = m.xyz;
+  t[3 * 7 + 2] = 0.0;  // (1,1,1) -> (1,1,0): in the bottom facet plane with vertex 0 = (0,0,0)
+  auto r2 = volmap::analyze_feasibility(m, bnd, t);
+  CHECK(r2.blocking_chord_edges.size() == 1);
+  CHECK(!r2.fixed_nonpositive_tets.empty());
+  CHECK(r2.infeasible_at_fixed_connectivity());
+}
+
+TEST_CASE("feasibility: the exact sign of the volume enclosed by the boundary image") {
+  const int n = 3;
+  const auto m = map_test::kuhn_grid(n);
+  const auto bnd = map_test::grid_boundary_flags(n);
+  // Identity: the unit cube, positive.
+  CHECK(volmap::analyze_feasibility(m, bnd, m.xyz).boundary_volume_sign == 1);
+  // Mirrored (x -> 1 - x): the same cube enclosed with reversed orientation; impossible at any refinement.
+  auto mirrored = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) mirrored[3 * v] = 1.0 - mirrored[3 * v];
+  const auto r = volmap::analyze_feasibility(m, bnd, mirrored);
+  CHECK(r.boundary_volume_sign == -1);
+  CHECK(r.infeasible_with_any_refinement());
+  CHECK(r.infeasible_at_fixed_connectivity());
+  // Collapsed onto the plane z = 0.3 far from the origin (shifted by 1e8, where the double sum of
+  // the triple products is pure rounding noise): exactly zero volume, decided by the rational sum.
+  auto flat = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    flat[3 * v] += 1e8;
+    flat[3 * v + 1] -= 1e8;
+    flat[3 * v + 2] = 0.3;
+  }
+  CHECK(volmap::analyze_feasibility(m, bnd, flat).boundary_volume_sign == 0);
+  // The unit cube shifted as far: still positive (the filter may not decide, the exact sum does).
+  auto far = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    far[3 * v] += 1e8;
+    far[3 * v + 1] -= 1e8;
+    far[3 * v + 2] += 3e7;
+  }
+  CHECK(volmap::analyze_feasibility(m, bnd, far).boundary_volume_sign == 1);
+}
+
+TEST_CASE("B0: splitting the chord diagonal keeps ids, appends one interior vertex, children exactly positive") {
+  auto m = map_test::kuhn_grid(1);
+  std::vector<std::uint8_t> bnd(8, 1);
+  const auto before = m;
+  auto r = volmap::split_chords(m, bnd, {{{0, 7}}}, {});
+  CHECK(r.edges_split == 1);
+  CHECK(r.vertices_added == 1);
+  CHECK(m.num_vertices() == 9);
+  CHECK(m.num_tets() == 12);
+  CHECK(bnd.size() == 9);
+  CHECK(bnd[8] == 0);
+  for (std::size_t i = 0; i < 24; ++i) CHECK(m.xyz[i] == before.xyz[i]);
+  CHECK(m.xyz[24] == 0.5);
+  CHECK(exact_bad(m.xyz, m.tets) == 0);
+  // Volume is preserved (children tile the parents).
+  auto vol = [](const volmap::TetMeshData& mm) {
+    double s = 0;
+    for (std::size_t t = 0; t < mm.num_tets(); ++t) {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i) p[i] = &mm.xyz[3 * mm.tets[4 * t + i]];
+      double e[3][3];
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i) e[k][i] = p[k + 1][i] - p[0][i];
+      s += -(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+             e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
+    }
+    return s;
+  };
+  CHECK(vol(m) == doctest::Approx(1.0));
+  // The chord faces all contained the diagonal: none is left.
+  auto f = volmap::analyze_feasibility(m, bnd, m.xyz);
+  CHECK(f.chord_edges.empty());
+  CHECK(f.chord_faces.empty());
+}
+
+TEST_CASE("B0: face split 1->3 turns each of the two tets into three exactly positive children") {
+  auto m = map_test::kuhn_grid(1);
+  std::vector<std::uint8_t> bnd(8, 1);
+  auto f = volmap::analyze_feasibility(m, bnd, m.xyz);
+  REQUIRE(!f.chord_faces.empty());
+  auto r = volmap::split_chords(m, bnd, {}, {f.chord_faces[0]});
+  CHECK(r.faces_split == 1);
+  CHECK(m.num_tets() == 6 + 4);
+  CHECK(exact_bad(m.xyz, m.tets) == 0);
+}
+
+TEST_CASE("pipeline: scrambled grid interior, affine boundary -> certified, boundary bit-exact") {
+  auto m = map_test::kuhn_grid(4);
+  auto bnd = map_test::grid_boundary_flags(4);
+  std::vector<double> target(m.xyz.size());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    target[3 * v] = 3 * m.xyz[3 * v] + m.xyz[3 * v + 2];
+    target[3 * v + 1] = m.xyz[3 * v + 1];
+    target[3 * v + 2] = 0.5 * m.xyz[3 * v + 2];
+  }
+  const auto map = map_of(bnd, target);
+  for (auto method : {volmap::MapMethod::Ffm, volmap::MapMethod::Tlc}) {
+    volmap::VolumeMapOptions opt;
+    opt.method = method;
+    auto r = volmap::compute_volume_map(m, map, opt);
+    CHECK(r.certified);
+    CHECK(exact_bad(r.target_xyz, r.source.tets) == 0);
+    for (std::size_t k = 0; k < map.size(); ++k)
+      for (int i = 0; i < 3; ++i) CHECK(r.target_xyz[3 * map.vids[k] + i] == map.xyz[3 * k + i]);
+  }
+}
+
+TEST_CASE("TLC untangles scrambled interior vertices (exact stop)") {
+  auto m = map_test::kuhn_grid(4);
+  auto bnd = map_test::grid_boundary_flags(4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  auto target = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    if (!bnd[v])
+      for (int i = 0; i < 3; ++i) target[3 * v + i] += u(rng);
+  REQUIRE(exact_bad(target, m.tets) > 0);
+  auto r = volmap::tlc_untangle(m.xyz, m.tets, bnd, target);
+  CHECK(r.certified);
+  CHECK(exact_bad(target, m.tets) == 0);
+}
+
+TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, the mapper certifies") {
+  VOLMAP_REQUIRE_DATA(obj, "maps/galaxymaps/example_object.vtk");
+  VOLMAP_REQUIRE_DATA(par, "maps/galaxymaps/example_parameter.vtk");
+  const auto src = volmap::read_vtk(obj.string());
+  const auto img = volmap::read_vtk(par.string());
+  REQUIRE(src.num_vertices() == 7);
+  REQUIRE(src.num_tets() == 10);
+  std::vector<std::uint8_t> bnd(7, 0);
+  for (auto v : volmap::boundary_vertex_ids(src)) bnd[v] = 1;
+  auto tutte = img.xyz;
+  volmap::solve_uniform_laplacian(bnd.size(), volmap::unique_tet_edges(src), bnd, tutte);
+  CHECK(exact_bad(tutte, src.tets) > 0);  // the counterexample: uniform Tutte folds
+  const auto map = map_of(bnd, img.xyz);
+  volmap::VolumeMapOptions opt;
+  opt.allow_refinement = false;
+  auto r = volmap::compute_volume_map(src, map, opt);
+  CHECK(r.certified);
+  CHECK(r.source.num_tets() == 10);
+}
+
+TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the refined pair") {
+  VOLMAP_REQUIRE_DATA(p, "maps/tlc/input");
+  std::ifstream in(p);
+  std::size_t nv, d;
+  in >> nv >> d;
+  volmap::TetMeshData m;
+  m.xyz.resize(3 * nv);
+  for (auto& x : m.xyz) in >> x;
+  std::vector<double> init(3 * nv);
+  in >> nv >> d;
+  for (auto& x : init) in >> x;
+  std::size_t nt, k;
+  in >> nt >> k;
+  m.tets.resize(4 * nt);
+  for (auto& t : m.tets) in >> t;
+  std::size_t nh;
+  in >> nh;
+  std::vector<std::uint8_t> bnd(nv, 0);
+  for (std::size_t i = 0; i < nh; ++i) {
+    std::uint32_t h;
+    in >> h;
+    bnd[h] = 1;
+  }
+  REQUIRE(m.num_tets() == 162);
+  CHECK(exact_bad(init, m.tets) == 36);
+  auto f = volmap::analyze_feasibility(m, bnd, init);
+  CHECK(f.chord_edges.size() == 24);
+  CHECK(f.chord_faces.size() == 66);
+  const auto map = map_of(bnd, init);
+  // Fixed connectivity: must never claim success unless the exact check passes.
+  volmap::VolumeMapOptions fixed;
+  fixed.allow_refinement = false;
+  auto r0 = volmap::compute_volume_map(m, map, fixed);
+  CHECK(r0.certified == (exact_bad(r0.target_xyz, r0.source.tets) == 0));
+  MESSAGE("TLC cube, fixed connectivity: certified " << r0.certified << ", non-positive " << r0.nonpositive
+          << "; blocking chord edges " << f.blocking_chord_edges.size() << " faces " << f.blocking_chord_faces.size()
+          << " fixed non-positive tets " << f.fixed_nonpositive_tets.size());
+  if (f.infeasible_at_fixed_connectivity()) CHECK(!r0.certified);
+  volmap::VolumeMapOptions refine;
+  auto r1 = volmap::compute_volume_map(m, map, refine);
+  MESSAGE("TLC cube, with refinement: certified " << r1.certified << ", tets " << r1.source.num_tets() << ", by " << r1.certified_by);
+  CHECK(exact_bad(r1.source.xyz, r1.source.tets) == 0);  // the refined source stays valid
+  CHECK(r1.certified == (exact_bad(r1.target_xyz, r1.source.tets) == 0));
+}
+
+TEST_CASE("volmap-map: no false success when a fixed all-boundary tet is inverted (exit 1), bad input exit 2") {
+  const auto tool = volmap_test::tool("volmap-map");
+  if (!std::filesystem::exists(tool)) {
+    MESSAGE("skipped: volmap-map not built");
+    return;
+  }
+  auto m = map_test::kuhn_grid(1);
+  std::vector<std::uint8_t> bnd(8, 1);
+  auto t = m.xyz;
+  t[3 * 7 + 2] = 0.0;  // flatten: some all-boundary tets become degenerate/inverted, nothing can move
+  const auto dir = temp_dir("nfs");
+  volmap::write_medit((dir / "in.mesh").string(), m);
+  volmap::write_boundary_map((dir / "map.txt").string(), map_of(bnd, t));
+  const std::string base = tool.string() + " " + (dir / "in.mesh").string() + " " + (dir / "map.txt").string() + " " +
+                           (dir / "out.mesh").string();
+  int rc = std::system((base + " --no-refine > /dev/null 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc) == 1);
+  rc = std::system((base + " --refined-input " + (dir / "ref.mesh").string() + " > /dev/null 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc) == 1);  // B1 cannot help either: every vertex is on the boundary
+  rc = std::system((tool.string() + " " + (dir / "missing.mesh").string() + " x y > /dev/null 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc) == 2);
+  // A feasible case certifies with exit 0 and bit-exact boundary in the written file.
+  auto g = map_test::kuhn_grid(3);
+  auto gb = map_test::grid_boundary_flags(3);
+  volmap::write_medit((dir / "g.mesh").string(), g);
+  volmap::write_boundary_map((dir / "gmap.txt").string(), map_of(gb, g.xyz));
+  rc = std::system((tool.string() + " " + (dir / "g.mesh").string() + " " + (dir / "gmap.txt").string() + " " +
+                    (dir / "gout.mesh").string() + " > /dev/null 2>&1").c_str());
+  CHECK(WEXITSTATUS(rc) == 0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("G1 bone and duck onto the five domains" * doctest::test_suite("long")) {
+  int certified = 0, pairs = 0;
+  for (std::string name : {"bone", "duck"})
+    for (std::string dom : {"cube", "tet", "pyr", "octa", "star"}) {
+      VOLMAP_REQUIRE_DATA(mesh, "volmap/G1/" + name + ".mesh");
+      VOLMAP_REQUIRE_DATA(mp, "volmap/G1_" + dom + "/" + name + "_" + dom + ".txt");
+      const auto src = volmap::read_medit(mesh.string());
+      const auto map = volmap::read_boundary_map(mp.string());
+      volmap::VolumeMapOptions opt;
+      opt.time_limit_seconds = 60;
+      opt.allow_refinement = false;
+      auto r = volmap::compute_volume_map(src, map, opt);
+      MESSAGE(name << " " << dom << ": certified " << r.certified << " non-positive " << r.nonpositive << " by "
+              << r.certified_by << " in " << r.seconds << " s");
+      CHECK(r.certified == (exact_bad(r.target_xyz, r.source.tets) == 0));  // never a false success
+      ++pairs;
+      certified += r.certified;
+    }
+  // Measured 2026-11-23 (loaded 2-core machine): 7 of 10 certified (bone cube/octa/star keep 2-4
+  // tets that need B1 refinement, not implemented yet). Guard against regressions below that.
+  if (pairs == 10) CHECK(certified >= 7);
+}
