@@ -1,7 +1,7 @@
 // predicates.cpp — layered exact predicates on doubles (layers L0–L3; L4 lives in exact.cpp).
 //
 // Conventions: Shewchuk's signs (see <volmap/predicates.hpp>); orient3d(a,b,c,d) = sign det[a−d; b−d;
-// c−d], VOLMAP-positive tets have orient3d > 0. Design and constants: ../shared/docs/predicates.md.
+// c−d], VOLMAP-positive tets have orient3d > 0. Design and constants: docs/predicates.md.
 //   L1 (batch only) static filter  |det| > 5.1107127829973299e-15·Δx·Δy·Δz (CGAL/FPG constant, TetGen
 //      and HXT use it with the bounding-box extents), valid when every input lies in the safe range.
 //   L2 Shewchuk stage A: |det| > errA·permanent, plus under/overflow guards (see "Guards" below),

@@ -1,4 +1,4 @@
-// volume_map.cpp — the volmap-map pipeline (see volmap/volume_map.hpp for conventions).
+// volume_map.cpp — the volmap-map pipeline (see volmap/volume_map.hpp for conventions). Section marks (§N) refer to docs/mapping.md.
 #include <volmap/volume/volume_map.hpp>
 
 #include <volmap/core/boundary_faces.hpp>

@@ -8,7 +8,7 @@
 //   insphere(a,b,c,d,e) > 0  iff e is inside the sphere through a,b,c,d (orient3d(a,b,c,d) > 0).
 // Results are exact for every finite double input (no perturbation, degenerate = 0): subnormals,
 // 2^±1000, mixed magnitudes and ±0 included. Evaluation is layered (see predicates/README.md and
-// ../shared/docs/predicates.md): floating-point filter, Shewchuk's adaptive expansion stages inside
+// docs/predicates.md): floating-point filter, Shewchuk's adaptive expansion stages inside
 // his safe exponent range [2^-142, 2^201], exact integer arithmetic (Boost cpp_int) outside it.
 // Preconditions of the unchecked scalar functions: all coordinates finite. The *_checked variants
 // and the batch entry point report non-finite input as an error instead of returning a sign.
