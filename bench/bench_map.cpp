@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <volmap/volume/cone_repair.hpp>
+#include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/ffm.hpp>
 
 #include "../tests/support/map_test_meshes.hpp"

@@ -1,7 +1,9 @@
 // Strict-kernel LP (B1 of mapping.md §7) and the link-kernel relocation pre-step.
 #include <doctest/doctest.h>
 
-#include <volmap/volume/cone_repair.hpp>
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/link_kernel.hpp>
 #include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
@@ -40,7 +42,7 @@ TEST_CASE("link-kernel relocation repairs a vertex pushed out of its star, never
   X[3 * 13] = 1.7;
   const auto before = exact_bad(X, m.tets);
   REQUIRE(before > 0);
-  auto r = volmap::relocate_into_link_kernels(m.tets, bnd, X, 5);
+  auto r = volmap::relocate_into_link_kernels(volmap::TetMesh(m), bnd, X, 5);
   CHECK(r.nonpositive_before == before);
   CHECK(r.nonpositive_after == 0);
   CHECK(exact_bad(X, m.tets) == 0);

@@ -18,6 +18,7 @@
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/core/properties.hpp>
 #include <volmap/core/tet_mesh.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/core/topology.hpp>
 
 #include <volmap/io/atomic_file.hpp>
@@ -39,6 +40,10 @@
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/link_kernel.hpp>
+#include <volmap/volume/map_stages.hpp>
+#include <volmap/volume/map_state.hpp>
 #include <volmap/volume/tlc.hpp>
 #include <volmap/volume/tutte3d.hpp>
 #include <volmap/volume/volume_map.hpp>

@@ -25,7 +25,6 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -53,7 +52,6 @@ static double ffm_chi_second(double D, double eps) {
 
 namespace {
 
-using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
 using untangle::exact_nonpositive;
@@ -486,7 +484,7 @@ std::size_t count_nonpositive_det(const std::vector<double>& dets) {
 FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                        const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                        const FfmOptions& options) {
-  const auto start = Clock::now();
+  const TimeBudget budget(options.time_limit_seconds);
   FfmResult result;
   FfmEnergy energy(source_xyz, tets, locked, target_xyz, options.reference, options.theta);
   const FfmEnergy::Impl& m = energy.impl();
@@ -497,7 +495,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     result.certified = result.nonpositive == 0;
     result.final_epsilon = eps;
     result.min_det = energy.min_det(x.data());
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.seconds = budget.elapsed();
     return result;
   };
   const std::vector<double> x0 = energy.initial_variables();
@@ -514,7 +512,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     return e;
   };
   obj.stop_when_certified = options.stop_when_certified;
-  obj.set_time_limit(start, options.time_limit_seconds);
+  obj.budget = budget;
   // LBFGSpp keeps a reference to its parameters: they must outlive the solver.
   const LBFGSpp::LBFGSParam<double> param =
       untangle::lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, 0, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE);
@@ -576,8 +574,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
 LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                                        const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options) {
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const TimeBudget budget(options.time_limit_seconds);
   LocalUntangleResult result;
   const std::size_t nv = target_xyz.size() / 3, nt = tets.size() / 4;
   if (source_xyz.size() != target_xyz.size() || locked.size() != nv || tets.size() % 4 != 0)
@@ -599,7 +596,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
   std::vector<std::uint8_t> in_region(nv), tet_in(nt);
   std::vector<std::uint32_t> frontier, next, local_id(nv, std::uint32_t(-1));
   for (int round = 0; round < options.max_rounds && !bad.empty(); ++round) {
-    if (options.time_limit_seconds > 0 && elapsed() >= options.time_limit_seconds) break;
+    if (budget.expired()) break;
     result.rounds = round + 1;
     std::fill(in_region.begin(), in_region.end(), 0);
     frontier.clear();
@@ -662,7 +659,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       fo.solver = FfmSolver::Newton;
       fo.stall_outer_iterations = options.stall_outer_iterations;
       fo.initial_epsilon = 0;  // warm start: the map is nearly valid
-      if (options.time_limit_seconds > 0) fo.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - elapsed());
+      fo.time_limit_seconds = budget.option_seconds();
       try {
         ffm_untangle(sub_source, sub_tets, sub_locked, trial, fo);
         sub_after = exact_nonpositive(trial, sub_tets);
@@ -688,7 +685,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     bad = untangle::exact_nonpositive_tets(target_xyz, tets);
   }
   result.nonpositive_after = bad.size();
-  result.seconds = elapsed();
+  result.seconds = budget.elapsed();
   return result;
 }
 
@@ -710,7 +707,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   };
   obj.barrier = true;
   obj.stop_when_certified = false;
-  obj.set_time_limit(Clock::now(), time_limit_seconds);
+  obj.budget = TimeBudget(time_limit_seconds);
   const std::vector<double> x0 = energy.initial_variables();
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), Eigen::Index(x0.size()));
   result.energy_before = energy.evaluate(x.data(), eps, nullptr);

@@ -7,18 +7,17 @@
 // has det T < 0. Internal header (lib/src): not part of the public API.
 #pragma once
 
+#include <volmap/core/time_budget.hpp>
+
 #include <Eigen/Core>
 #include <LBFGS.h>
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 namespace volmap::untangle {
-
-using Clock = std::chrono::steady_clock;
 
 // Exact number of tets with orient3d <= 0 (all tets when the batch predicate refuses the input).
 std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
@@ -100,15 +99,13 @@ struct GuardedObjective {
   std::vector<double>* candidate = nullptr;  // unscaled full coordinates (locked vertices exact)
   bool stop_when_certified = true;
   bool barrier = false;
-  bool has_deadline = false;
-  Clock::time_point deadline;
+  TimeBudget budget;  // unlimited unless set
   long evaluations = 0;
   long next_exact_check = 0;
   int check_period = 10;
   Eigen::VectorXd last_x;
 
-  void set_time_limit(Clock::time_point start, double seconds);
-  bool past_deadline() const { return has_deadline && Clock::now() > deadline; }
+  bool past_deadline() const { return budget.expired(); }
   // Writes vars into the candidate and returns true when its exact count is 0.
   bool exactly_certified(const double* vars);
   double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad);

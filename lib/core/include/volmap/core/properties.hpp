@@ -12,6 +12,7 @@
 #include <volmap/core/tet_mesh.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -126,5 +127,9 @@ template <class T>
 using VertexProperty = MeshProperty<T, ElementKind::Vertex, VertexId>;
 template <class T>
 using TetProperty = MeshProperty<T, ElementKind::Tet, TetId>;
+
+// A second coordinate set next to the mesh's own positions (e.g. the target of a map): 3 doubles per
+// vertex slot; new vertices get the default (0,0,0) until the caller places them.
+using PositionProperty = VertexProperty<std::array<double, 3>>;
 
 }  // namespace volmap

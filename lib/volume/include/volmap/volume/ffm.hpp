@@ -40,7 +40,7 @@ struct FfmOptions {
   FfmSolver solver = FfmSolver::Lbfgs;
   double theta = 0.5;
   int max_outer_iterations = 10000;
-  int max_lbfgs_iterations = 200;  // reference: 3000; capped so ε is updated more often (measured faster on G1 bone)
+  int max_lbfgs_iterations = 200;  // per outer (ε) step; the reference uses 3000, fewer update ε more often
   int max_newton_iterations = 30;  // Newton steps per outer (ε) step
   double gradient_tolerance = 1e-4;
   double time_limit_seconds = 0;  // 0 = no limit

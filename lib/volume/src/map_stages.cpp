@@ -1,0 +1,89 @@
+// map_stages.cpp — each stage of the mapper as one call over the MapState (map_stages.hpp). The
+// untanglers run on flat arrays of the compacted mesh: source positions and tets straight from the
+// TetMesh, the locked mask from its property, the target copied out and back.
+#include <volmap/volume/map_stages.hpp>
+
+#include <volmap/volume/tutte3d.hpp>
+
+#include <algorithm>
+
+namespace volmap {
+
+FeasibilityReport analyze_feasibility(const MapState& s) {
+  s.require_compact();
+  return analyze_feasibility(s.source, s.locked.data(), s.target_xyz());
+}
+
+ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& report) {
+  s.require_compact();
+  const ChordSplitResult r = split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);
+  s.source.compact();  // splits leave no tombstone; ids stay as they are
+  return r;
+}
+
+void place_by_tutte(MapState& s) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  solve_uniform_laplacian(s.source.num_vertices(), unique_tet_edges(s.source), s.locked.data(), x);
+  s.set_target_xyz(x);
+}
+
+void place_new_vertices_by_laplacian(MapState& s, std::size_t keep) {
+  s.require_compact();
+  if (s.source.num_vertices() <= keep) return;
+  std::vector<std::uint8_t> kept(s.source.num_vertices(), 0);
+  std::fill(kept.begin(), kept.begin() + std::ptrdiff_t(keep), std::uint8_t(1));
+  std::vector<double> x = s.target_xyz();
+  solve_uniform_laplacian(kept.size(), unique_tet_edges(s.source), kept, x);
+  s.set_target_xyz(x);
+}
+
+TlcResult run_tlc(MapState& s, const TlcOptions& options) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  const TlcResult r = tlc_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  s.set_target_xyz(x);
+  return r;
+}
+
+RelocationResult run_link_kernel(MapState& s, int max_sweeps) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  const RelocationResult r = relocate_into_link_kernels(s.source, s.locked.data(), x, max_sweeps);
+  s.set_target_xyz(x);
+  return r;
+}
+
+FfmResult run_ffm(MapState& s, const FfmOptions& options) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  const FfmResult r = ffm_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  s.set_target_xyz(x);
+  return r;
+}
+
+LocalUntangleResult run_local_ffm(MapState& s, const LocalUntangleOptions& options) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  const LocalUntangleResult r = ffm_local_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  s.set_target_xyz(x);
+  return r;
+}
+
+QualityResult run_quality_pass(MapState& s, ReferenceShape reference, int max_iterations, double time_limit_seconds) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  const QualityResult r =
+      ffm_quality_pass(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, reference, max_iterations, time_limit_seconds);
+  s.set_target_xyz(x);
+  return r;
+}
+
+ConeRepairResult run_cone_repair(MapState& s, const ConeRepairOptions& options) {
+  s.require_compact();
+  const ConeRepairResult r = cone_repair(s.source, s.target, s.locked, options);
+  s.source.compact();  // patches delete no vertex: vertex ids stay, tets keep their relative order
+  return r;
+}
+
+}  // namespace volmap
