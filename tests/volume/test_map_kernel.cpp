@@ -1,6 +1,7 @@
 // Strict-kernel LP (B1 of mapping.md §7) and the link-kernel relocation pre-step.
 #include <doctest/doctest.h>
 
+#include <volmap/core/local_tables.hpp>
 #include <volmap/core/tet_mesh.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/link_kernel.hpp>
@@ -19,7 +20,7 @@ TEST_CASE("strict kernel of a tet's outward faces is its interior; reversed face
   // VOLMAP-positive tet: orient3d(v0,v1,v2,v3) > 0.
   double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   if (volmap::orient3d(v[0], v[1], v[2], v[3]) < 0) std::swap(v[2], v[3]);
-  static const int F[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+  const auto& F = volmap::kTetFace;
   std::vector<double> tri, rev;
   for (const auto& f : F) {
     for (int j = 0; j < 3; ++j)

@@ -1,5 +1,5 @@
 // Surface mapping onto a base domain (see surface_map.hpp for the algorithm).
-// Conventions: boundary triangles are kept in the outward winding of their tet (kTetFaceLocal), so
+// Conventions: boundary triangles are kept in the outward winding of their tet (kTetFace), so
 // around a vertex v a triangle (v,x,y) turns counter-clockwise from x to y seen from outside, the same
 // sense as the domain's rotation system. Vertex ids are those of the tet mesh; split vertices are
 // appended. The working surface is a small flat structure (triangles + per-vertex triangle lists in
