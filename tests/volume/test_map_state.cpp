@@ -16,22 +16,12 @@
 
 namespace {
 
-volmap::BoundaryMap map_of(const std::vector<std::uint8_t>& bnd, const std::vector<double>& target) {
-  volmap::BoundaryMap m;
-  for (std::size_t v = 0; v < bnd.size(); ++v)
-    if (bnd[v]) {
-      m.vids.push_back(std::uint32_t(v));
-      for (int i = 0; i < 3; ++i) m.xyz.push_back(target[3 * v + i]);
-    }
-  return m;
-}
-
 // Kuhn grid of the unit cube mapped by an orientation-preserving affine map (scrambled_target's map
 // without the scrambling): Tutte reproduces it, so every tet is positive after place_by_tutte.
 struct AffineCase {
   explicit AffineCase(int n)
       : mesh(map_test::kuhn_grid(n)), bnd(map_test::grid_boundary_flags(n)), affine(map_test::scrambled_target(mesh, bnd, 1, 0.0)),
-        map(map_of(bnd, affine)) {}
+        map(map_test::boundary_map_of(bnd, affine)) {}
   volmap::TetMeshData mesh;
   std::vector<std::uint8_t> bnd;
   std::vector<double> affine;

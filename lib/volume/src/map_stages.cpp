@@ -9,6 +9,20 @@
 
 namespace volmap {
 
+namespace {
+
+// Runs `untangle(x)` on the state's target as a flat array x (compacted mesh) and stores it back.
+template <class Untangle>
+auto on_flat_target(MapState& s, Untangle&& untangle) {
+  s.require_compact();
+  std::vector<double> x = s.target_xyz();
+  auto result = untangle(x);
+  s.set_target_xyz(x);
+  return result;
+}
+
+}  // namespace
+
 FeasibilityReport analyze_feasibility(const MapState& s) {
   s.require_compact();
   return analyze_feasibility(s.source, s.locked.data(), s.target_xyz());
@@ -22,10 +36,9 @@ ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& rep
 }
 
 void place_by_tutte(MapState& s) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  solve_uniform_laplacian(s.source.num_vertices(), unique_tet_edges(s.source), s.locked.data(), x);
-  s.set_target_xyz(x);
+  on_flat_target(s, [&](std::vector<double>& x) {
+    return solve_uniform_laplacian(s.source.num_vertices(), unique_tet_edges(s.source), s.locked.data(), x);
+  });
 }
 
 void place_new_vertices_by_laplacian(MapState& s, std::size_t keep) {
@@ -33,50 +46,37 @@ void place_new_vertices_by_laplacian(MapState& s, std::size_t keep) {
   if (s.source.num_vertices() <= keep) return;
   std::vector<std::uint8_t> kept(s.source.num_vertices(), 0);
   std::fill(kept.begin(), kept.begin() + std::ptrdiff_t(keep), std::uint8_t(1));
-  std::vector<double> x = s.target_xyz();
-  solve_uniform_laplacian(kept.size(), unique_tet_edges(s.source), kept, x);
-  s.set_target_xyz(x);
+  on_flat_target(s, [&](std::vector<double>& x) { return solve_uniform_laplacian(kept.size(), unique_tet_edges(s.source), kept, x); });
 }
 
+
 TlcResult run_tlc(MapState& s, const TlcOptions& options) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  const TlcResult r = tlc_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
-  s.set_target_xyz(x);
-  return r;
+  return on_flat_target(s, [&](std::vector<double>& x) {
+    return tlc_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  });
 }
 
 RelocationResult run_link_kernel(MapState& s, int max_sweeps) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  const RelocationResult r = relocate_into_link_kernels(s.source, s.locked.data(), x, max_sweeps);
-  s.set_target_xyz(x);
-  return r;
+  return on_flat_target(s, [&](std::vector<double>& x) { return relocate_into_link_kernels(s.source, s.locked.data(), x, max_sweeps); });
 }
 
 FfmResult run_ffm(MapState& s, const FfmOptions& options) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  const FfmResult r = ffm_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
-  s.set_target_xyz(x);
-  return r;
+  return on_flat_target(s, [&](std::vector<double>& x) {
+    return ffm_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  });
 }
 
 LocalUntangleResult run_local_ffm(MapState& s, const LocalUntangleOptions& options) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  const LocalUntangleResult r = ffm_local_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
-  s.set_target_xyz(x);
-  return r;
+  return on_flat_target(s, [&](std::vector<double>& x) {
+    return ffm_local_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+  });
 }
 
 QualityResult run_quality_pass(MapState& s, ReferenceShape reference, int max_iterations, double time_limit_seconds) {
-  s.require_compact();
-  std::vector<double> x = s.target_xyz();
-  const QualityResult r =
-      ffm_quality_pass(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, reference, max_iterations, time_limit_seconds);
-  s.set_target_xyz(x);
-  return r;
+  return on_flat_target(s, [&](std::vector<double>& x) {
+    return ffm_quality_pass(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, reference, max_iterations,
+                            time_limit_seconds);
+  });
 }
 
 ConeRepairResult run_cone_repair(MapState& s, const ConeRepairOptions& options) {
