@@ -30,9 +30,7 @@ FeasibilityReport analyze_feasibility(const MapState& s) {
 
 ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& report) {
   s.require_compact();
-  const ChordSplitResult r = split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);
-  s.source.compact();  // splits leave no tombstone; ids stay as they are
-  return r;
+  return split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);  // splits leave no tombstone
 }
 
 void place_by_tutte(MapState& s) {
@@ -82,7 +80,8 @@ QualityResult run_quality_pass(MapState& s, ReferenceShape reference, int max_it
 ConeRepairResult run_cone_repair(MapState& s, const ConeRepairOptions& options) {
   s.require_compact();
   const ConeRepairResult r = cone_repair(s.source, s.target, s.locked, options);
-  s.source.compact();  // patches delete no vertex: vertex ids stay, tets keep their relative order
+  // Patches delete no vertex: vertex ids stay, tets keep their relative order.
+  if (s.source.num_free_tet_slots() > 0) s.source.compact();
   return r;
 }
 

@@ -67,8 +67,9 @@ class VolumeMapper {
   // Judges the stage that started at t0 (seconds into the call), records it, and names it as the
   // certifying stage when it left no non-positive tet.
   void judged(const std::string& name, double t0, const std::string& certifier) {
+    const double seconds = total_.elapsed() - t0;
     const StageVerdict v = judge_.judge();
-    result_.stages.push_back({name, total_.elapsed() - t0, v.measured});
+    result_.stages.push_back({name, seconds, v.measured});
     bad_ = v.kept;
     if (bad_ == 0 && !certifier.empty()) result_.certified_by = certifier;
   }
