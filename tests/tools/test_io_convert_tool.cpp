@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <volmap/io/io.hpp>
 
+#include "meshio_support.hpp"
 #include "test_support.hpp"
 
 #include <cmath>
@@ -33,13 +34,6 @@ int run(const std::string& command, std::string* out = nullptr) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
-
-// A Python interpreter with meshio, or "" (the pyenv shim may hide Debian's python3-meshio).
-std::string meshio_python() {
-  for (const char* py : {"python3", "/usr/bin/python3"})
-    if (run(std::string(py) + " -c 'import meshio'") == 0) return py;
-  return "";
-}
 
 }  // namespace
 
@@ -86,7 +80,7 @@ TEST_CASE("volmap-convert: conversions keep order, exit codes, --json, no partia
 }
 
 TEST_CASE("third-party reader: meshio reads our .vtu and .vtk files") {
-  const std::string py = meshio_python();
+  const std::string py = volmap_test::meshio_python();
   if (py.empty()) {
     MESSAGE("skipped: Python meshio not available");
     return;
@@ -138,7 +132,7 @@ TEST_CASE("third-party reader: meshio reads our .vtu and .vtk files") {
 }
 
 TEST_CASE("third-party writer: files written by meshio are read back exactly") {
-  const std::string py = meshio_python();
+  const std::string py = volmap_test::meshio_python();
   if (py.empty()) {
     MESSAGE("skipped: Python meshio not available");
     return;

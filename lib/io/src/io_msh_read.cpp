@@ -1,4 +1,5 @@
-// Gmsh .msh reader: MSH 2.x (2.0-2.2) and 4.1, ASCII and binary (see io.hpp for what is kept).
+// Gmsh .msh reader: MSH 2.x (2.0-2.2) and 4.1, ASCII and binary (what is kept: io.hpp and
+// volmap-reference.md §2.7).
 // Layout rules this reader relies on (Gmsh reference manual, "MSH file format"):
 //  - `$MeshFormat` first: `version file-type data-size`; binary files follow the line with the int 1
 //    in the file's byte order (our endianness marker) and a newline.

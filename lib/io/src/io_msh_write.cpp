@@ -1,4 +1,4 @@
-// Gmsh MSH 4.1 writer (ASCII, or binary little-endian with data-size 8), atomic.
+// Gmsh MSH 4.1 writer (ASCII, or binary little-endian with data-size 8), atomic (volmap-reference.md §2.7).
 // Layout: $MeshFormat; $Entities with one volume entity per distinct tet label, in order of first
 // appearance (entity tags 1..k; physical tag = the label when it is non-zero, none for label 0;
 // bounding box of the entity's tets; no bounding surfaces); $Nodes as one block on entity 1, node tags

@@ -1,4 +1,5 @@
-// OpenVolumeMesh text format (.ovm, header `OVM ASCII`) reader, tetrahedral cells only.
+// OpenVolumeMesh text format (.ovm, header `OVM ASCII`) reader, tetrahedral cells only
+// (volmap-reference.md §2.8).
 // Sections in this order, keywords case-insensitive, '#' comments:
 //   Vertices n, then n lines `x y z`;  Edges n, then n lines `v0 v1` (0-based vertex ids);
 //   Faces n, then n lines `k h1..hk`: half-edge ids, 2e runs v0->v1 of edge e and 2e+1 runs back;
