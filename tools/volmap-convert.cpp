@@ -10,6 +10,7 @@
 #include "support/tool_common.hpp"
 
 #include <volmap/check/orientation.hpp>
+#include <volmap/core/count_text.hpp>
 #include <volmap/io/io.hpp>
 
 #include <chrono>
@@ -64,8 +65,9 @@ int main(int argc, char** argv) {
           if (!inputs.empty()) j["input_notes"] = inputs.json();
           std::cout << j.dump() << "\n";
         } else {
-          std::printf("%s -> %s: %zu vertices, %zu tets; %s\n", input.c_str(), output.c_str(), mesh.num_vertices(),
-                      mesh.num_tets(), orientation.c_str());
+          std::printf("%s -> %s: %s, %s; %s\n", input.c_str(), output.c_str(),
+                      volmap::count_of(mesh.num_vertices(), "vertex", "vertices").c_str(),
+                      volmap::count_of(mesh.num_tets(), "tet").c_str(), orientation.c_str());
         }
         return volmap_tools::kExitOk;
       },

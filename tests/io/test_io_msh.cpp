@@ -10,6 +10,7 @@
 #include <volmap/io/io.hpp>
 
 #include "msh_fixtures.hpp"
+#include "mesh_compare.hpp"
 #include "test_support.hpp"
 
 #include <cstring>
@@ -24,15 +25,8 @@ namespace {
 fs::path scratch() { return volmap_test::scratch_dir("io_msh"); }
 std::string put(const std::string& name, const std::string& bytes) { return volmap_test::write_bytes(scratch() / name, bytes); }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
-void check_same(const TetMeshData& a, const TetMeshData& b) {
-  CHECK(same_bits(a.xyz, b.xyz));
-  CHECK(a.tets == b.tets);
-  CHECK(a.vertex_labels == b.vertex_labels);
-  CHECK(a.tet_labels == b.tet_labels);
-}
+using volmap_test::same_bits;
+void check_same(const TetMeshData& a, const TetMeshData& b) { volmap_test::check_same_mesh(a, b); }
 
 // The error read_msh throws on `bytes` (kind and message), or fails the test when none is thrown.
 Error msh_error(const std::string& bytes, const std::string& name = "bad.msh") {
@@ -131,7 +125,10 @@ TEST_CASE("orientation sentences: every class, grouped digits, zero-volume tets"
         "6,050 of 6,059 tets are in the opposite orientation convention (orient3d < 0, as Gmsh and OpenVolumeMesh "
         "order them) and 9 have zero volume; --fix flips them");
   CHECK(describe_orientation(counts(1234567, 0, 0)) == "all 1,234,567 tets are in the VOLMAP orientation convention (orient3d > 0)");
-  CHECK(describe_orientation(counts(1, 0, 0)) == "all 1 tet is in the VOLMAP orientation convention (orient3d > 0)");
+  CHECK(describe_orientation(counts(1, 0, 0)) == "the one tet is in the VOLMAP orientation convention (orient3d > 0)");
+  CHECK(describe_orientation(counts(0, 0, 1), "--fix") ==
+        "the one tet is in the opposite orientation convention (orient3d < 0, as Gmsh and OpenVolumeMesh order them); "
+        "--fix flips it");
   CHECK(describe_orientation(counts(120, 0, 6000)) ==
         "orientation is mixed: 120 of 6,120 tets are in the VOLMAP convention (orient3d > 0) and 6,000 in the opposite "
         "one; no global flip fixes that");

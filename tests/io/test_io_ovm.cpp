@@ -91,7 +91,7 @@ TEST_CASE("ovm: a tet cell reads in OpenVolumeMesh order (first half-face, then 
   CHECK(orient3d(&c.xyz[0], &c.xyz[9], &c.xyz[3], &c.xyz[6]) < 0);
   const TetMeshCheckReport r = check_tet_mesh(c);
   CHECK(r.orientation == OrientationClass::CoherentlyOpposite);
-  CHECK(r.check("orientation").detail.find("all 1 tet is in the opposite orientation convention") == 0);
+  CHECK(r.check("orientation").detail.find("the one tet is in the opposite orientation convention") == 0);
 }
 
 TEST_CASE("ovm: polyhedral cells are refused naming the cell; broken cells and files throw volmap::Error") {

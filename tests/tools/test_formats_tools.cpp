@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <volmap/io/io.hpp>
 
+#include "mesh_compare.hpp"
 #include "meshio_support.hpp"
 #include "msh_fixtures.hpp"
 #include "test_support.hpp"
@@ -35,9 +36,7 @@ Run run(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, volmap_test::read_bytes(out), volmap_test::read_bytes(err)};
 }
 bool contains(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
+using volmap_test::same_bits;
 
 const char* const kOppositeTwo =
     "all 2 tets are in the opposite orientation convention (orient3d < 0, as Gmsh and OpenVolumeMesh order them)";
@@ -146,48 +145,16 @@ TEST_CASE("third-party: meshio reads our .msh (ASCII and binary) with labels; we
   const fs::path d = scratch();
   write_msh((d / "ours_a.msh").string(), m, MshEncoding::Ascii);
   write_msh((d / "ours_b.msh").string(), m, MshEncoding::Binary);
-  // Prints: points, tets, vertex 0 and the last vertex (repr), first and last tet, the physical tags
-  // of the first and last tet, the sum of the vertex labels.
-  const std::string script =
-      "import sys, meshio\n"
-      "m = meshio.read(sys.argv[1])\n"
-      "i = [k for k, c in enumerate(m.cells) if c.type == 'tetra']\n"
-      "t = [m.cells[k].data for k in i]\n"
-      "p = [m.cell_data['gmsh:physical'][k] for k in i]\n"
-      "print(len(m.points), sum(len(x) for x in t))\n"
-      "print(' '.join(repr(float(v)) for v in list(m.points[0]) + list(m.points[-1])))\n"
-      "print(' '.join(str(int(v)) for v in t[0][0]), ' '.join(str(int(v)) for v in t[-1][-1]))\n"
-      "print(int(p[0][0]), int(p[-1][-1]), int(sum(m.point_data['label'])))\n";
-  { std::ofstream(d / "read.py") << script; }
+  long long expected_sum = 0;
+  for (std::int32_t l : m.vertex_labels) expected_sum += l;
   for (const char* name : {"ours_a.msh", "ours_b.msh"}) {
     CAPTURE(name);
-    const Run r = run(py + " " + shell_quote(d / "read.py") + " " + shell_quote(d / name));
-    REQUIRE(r.code == 0);
-    std::istringstream in(r.out);
-    std::size_t np = 0, nt = 0;
-    in >> np >> nt;
-    CHECK(np == m.num_vertices());
-    CHECK(nt == m.num_tets());
-    double c[6];
-    for (double& v : c) in >> v;
-    const std::size_t last = m.num_vertices() - 1;
-    for (int k = 0; k < 3; ++k) {
-      CHECK(c[k] == m.xyz[k]);
-      CHECK(c[3 + k] == m.xyz[3 * last + k]);
-    }
-    std::uint32_t t0[4], tl[4];
-    for (auto& v : t0) in >> v;
-    for (auto& v : tl) in >> v;
-    for (int k = 0; k < 4; ++k) {
-      CHECK(t0[k] == m.tets[k]);
-      CHECK(tl[k] == m.tets[m.tets.size() - 4 + k]);
-    }
-    long long first_label = 0, last_label = 0, label_sum = 0, expected_sum = 0;
-    in >> first_label >> last_label >> label_sum;
-    for (std::int32_t l : m.vertex_labels) expected_sum += l;
-    CHECK(first_label == 4);
-    CHECK(last_label == 7);
-    CHECK(label_sum == expected_sum);
+    volmap_test::MeshioSummary s;
+    REQUIRE(volmap_test::meshio_summary(py, d.string(), (d / name).string(), s));
+    volmap_test::check_meshio_summary(s, m);
+    CHECK(s.first_physical == 4);
+    CHECK(s.last_physical == 7);
+    CHECK(s.label_sum == expected_sum);
   }
   // meshio writes MSH 2.2 and 4.1, ASCII and binary (17 significant digits in ASCII): read exactly.
   write_vtu((d / "src.vtu").string(), m);

@@ -25,22 +25,24 @@ OrientationClass classify_orientation(const TetSignCounts& s) {
 std::string describe_orientation(const TetSignCounts& s, const std::string& fix) {
   const std::size_t total = s.positive + s.negative + s.zero;
   const std::string zeros = s.zero == 0 ? "" : " and " + grouped(s.zero) + " have zero volume";
-  // "all 6,059 tets" when every tet is in the class, else "6,050 of 6,059 tets".
-  auto subject = [&](std::size_t n) { return n == total ? "all " + count_of(total, "tet") : grouped(n) + " of " + count_of(total, "tet"); };
+  // "all 6,059 tets are" when every tet is in the class, else "6,050 of 6,059 tets are".
+  auto subject = [&](std::size_t n) {
+    if (total == 1) return std::string("the one tet is");
+    return (n == total ? "all " + count_of(total, "tet") : grouped(n) + " of " + count_of(total, "tet")) + " are";
+  };
   switch (classify_orientation(s)) {
     case OrientationClass::AllPositive:
-      return subject(s.positive) + (s.positive == 1 && total == 1 ? " is" : " are") +
-             " in the VOLMAP orientation convention (orient3d > 0)" + zeros;
+      return subject(s.positive) + " in the VOLMAP orientation convention (orient3d > 0)" + zeros;
     case OrientationClass::CoherentlyOpposite:
-      return subject(s.negative) + (s.negative == 1 && total == 1 ? " is" : " are") +
-             " in the opposite orientation convention (orient3d < 0, as Gmsh and OpenVolumeMesh order them)" + zeros +
-             "; " + fix + " flips them";
+      return subject(s.negative) + " in the opposite orientation convention (orient3d < 0, as Gmsh and OpenVolumeMesh order them)" +
+             zeros + "; " + fix + (total == 1 ? " flips it" : " flips them");
     case OrientationClass::Mixed:
       return "orientation is mixed: " + grouped(s.positive) + " of " + count_of(total, "tet") +
              " are in the VOLMAP convention (orient3d > 0) and " + grouped(s.negative) +
              " in the opposite one" + zeros + "; no global flip fixes that";
     case OrientationClass::Empty:
-      return total == 0 ? std::string("the mesh has no tets") : "all " + count_of(total, "tet") + " have zero volume";
+      if (total == 0) return "the mesh has no tets";
+      return total == 1 ? "the one tet has zero volume" : "all " + count_of(total, "tet") + " have zero volume";
   }
   return "";
 }
