@@ -3,7 +3,7 @@
 
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -181,7 +181,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   for (std::size_t t = 0; t < nt; ++t) {
     const std::uint32_t* tv = &source.tets[4 * t];
     for (std::uint8_t i = 0; i < 4; ++i) {
-      std::array<std::uint32_t, 3> k = {tv[kTetFaceLocal[i][0]], tv[kTetFaceLocal[i][1]], tv[kTetFaceLocal[i][2]]};
+      std::array<std::uint32_t, 3> k = {tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]};
       if (!(on_boundary[k[0]] && on_boundary[k[1]] && on_boundary[k[2]])) continue;
       std::sort(k.begin(), k.end());
       faces.push_back({k, std::uint32_t(t), i});
