@@ -1038,10 +1038,7 @@ RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& te
     for (std::size_t s = 0; s < 4 * nt; ++s) slot[fill[tets[s]]++] = std::uint32_t(s);
   }
   std::vector<std::int8_t> sign(nt);
-  auto count_bad = [&] {
-    const TetSignCounts c = orient3d_tets(X.data(), nv, tets.data(), nt, sign.data());
-    return c.zero + c.negative;
-  };
+  auto count_bad = [&] { return count_nonpositive(X.data(), nv, tets.data(), nt, sign.data()); };
   res.nonpositive_before = count_bad();
   std::size_t bad = res.nonpositive_before;
   std::vector<double> tri;

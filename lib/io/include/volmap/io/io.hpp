@@ -12,7 +12,7 @@
 #include <volmap/core/error.hpp>
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/io/read_notes.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <string>
 #include <vector>
