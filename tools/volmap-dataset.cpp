@@ -1,6 +1,7 @@
 // volmap-dataset — extend the benchmark (VOLMAP paper, Sections 6-7) in one command:
 //   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star]
-//                  [--jobs N] [--quality 1.414 | --coarse] [--max-volume V] [--decimate F] [--keep-going] [--json]
+//                  [--jobs N] [--quality 1.414 | --coarse] [--max-volume V] [--decimate F] [--keep-going]
+//                  [--keep-unrefined] [--json]
 // For each surface (.obj .off .stl .ply): tetrahedralize (which checks the surface first), run the
 // tet-mesh checks, compute every domain's boundary map on ONE mesh (as VOLMAP does), verify every map
 // exactly, then publish <dataset>/<group>/<name>.mesh and <group>_<dom>/<name>_<dom>.txt. Every step
@@ -9,7 +10,9 @@
 // carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
 // Tet meshes (.mesh .vtk .vtu, VOLMAP-positive) in the folder are used as they are, without TetGen.
 // --decimate F first coarsens surfaces of more than F triangles to F (lib decimate). --keep-going
-// drops only the domains whose map fails (recorded per domain) and publishes the others.
+// drops only the domains whose map fails (recorded per domain, the mesh it failed on kept in
+// <group>_failed/) and publishes the others. --keep-unrefined also publishes the mesh before any
+// surface-map split as <group>_unrefined/<name>.mesh (no benchmark group; for growth figures).
 #include "tool_common.hpp"
 
 #include <volmap/atomic_file.hpp>
@@ -59,7 +62,7 @@ struct SurfaceOutcome {
 struct DatasetOptions {
   std::vector<std::string> domains;
   std::string quality, max_volume;
-  bool coarse = false, keep_going = false;
+  bool coarse = false, keep_going = false, keep_unrefined = false;
   std::size_t decimate = 0;  // 0 = never
 };
 
@@ -140,6 +143,10 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   outcome.tetgen_tets = volmap::read_tet_mesh(mesh.string()).num_tets();
   if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check"); !e.empty())
     return outcome.reason = e, outcome;
+  if (opt.keep_unrefined) {
+    fs::create_directories(dataset / (group + "_unrefined"));
+    copy_atomically(mesh, dataset / (group + "_unrefined") / (outcome.name + ".mesh"));
+  }
 
   // One mesh for every domain: map the domains in turn; when a domain refines the mesh (midpoint
   // splits of boundary edges), the maps computed so far are carried onto the refined mesh by midpoint
@@ -148,9 +155,15 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   // refine again: repeat, a bounded number of times.
   auto map_path = [&](const std::string& dom) { return work / (outcome.name + "_" + dom + ".txt"); };
   std::vector<std::string> domains = opt.domains;
-  auto drop = [&](const std::string& dom, const std::string& reason) {  // --keep-going
+  // --keep-going: the mesh the domain failed on (and its map, if one was written) are kept in
+  // <dataset>/<group>_failed/ to reproduce the failure; that folder is no benchmark group.
+  auto drop = [&](const std::string& dom, const std::string& reason) {
     outcome.failed_domains.emplace_back(dom, reason);
     domains.erase(std::find(domains.begin(), domains.end(), dom));
+    const fs::path kept = dataset / (group + "_failed");
+    fs::create_directories(kept);
+    copy_atomically(mesh, kept / (outcome.name + "_" + dom + ".mesh"));
+    if (fs::exists(map_path(dom))) copy_atomically(map_path(dom), kept / (outcome.name + "_" + dom + ".txt"));
     fs::remove(map_path(dom));
   };
   std::vector<std::string> pending = domains;
@@ -236,6 +249,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-volume", opt.max_volume, "TetGen maximum tet volume (a switch)");
   app.add_option("--decimate", opt.decimate,
                  "first decimate surfaces of more than this many triangles to this many (quadric edge collapses)");
+  app.add_flag("--keep-unrefined", opt.keep_unrefined,
+               "also write the mesh before any surface-map split to <group>_unrefined/<name>.mesh");
   app.add_flag("--keep-going", opt.keep_going,
                "a domain whose map fails is dropped (reason in the log and JSON); the other domains are published");
   app.add_flag("--json", json, "print one JSON object");
