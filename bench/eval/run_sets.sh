@@ -96,7 +96,7 @@ run_maps() {  # <results dir>
     check="{}"
     if [ -z "$note" ]; then
       rc=0
-      /usr/bin/time -f '%e' -o "$work/wall.txt" timeout "$TIMEOUT" "$BIN/volmap-map" "$object" - "$work/out.mesh" \
+      /usr/bin/time -f '%e %U %S' -o "$work/time.txt" timeout "$TIMEOUT" "$BIN/volmap-map" "$object" - "$work/out.mesh" \
         --initial "$parameter" --refined-input "$work/refined.mesh" --threads 1 --time-limit "$TIME_LIMIT" --json \
         > "$work/map.json" 2> "$work/map.err" || rc=$?
       if [ -f "$work/out.mesh" ]; then
@@ -117,9 +117,13 @@ def first(p):
     except Exception: return ""
 try: check = json.loads(check)
 except Exception: check = {}
-wall = first(os.path.join(work, "wall.txt"))
+try:
+    lines = [l for l in open(os.path.join(work, "time.txt")).read().splitlines() if l.strip()]
+    wall, user, system = (float(x) for x in lines[-1].split()[-3:])  # GNU time may add a status line first
+except Exception:
+    wall = user = system = None
 print(json.dumps({"name": name, "object": obj, "parameter": par, "note": note, "exit_code": rc,
-                  "wall_s": float(wall) if wall.replace(".", "").isdigit() else None,
+                  "wall_s": wall, "cpu_s": user + system if user is not None else None,
                   "map": load(os.path.join(work, "map.json")), "stderr": first(os.path.join(work, "map.err")),
                   "check": check}))
 EOF

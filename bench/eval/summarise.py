@@ -103,7 +103,14 @@ def candidate_json(results_dir, group, name, dom):
 
 
 def stage_trail(cand):
-    return " ".join("%s:%s" % (s.get("name"), s.get("nonpositive_after")) for s in cand.get("stages", []))
+    """'name:bad' per stage (the first 4 and the last 6 when longer), and the fewest bad tets seen."""
+    st = [(s.get("name"), s.get("nonpositive_after")) for s in cand.get("stages", [])]
+    if not st:
+        return ""
+    shown = st if len(st) <= 10 else st[:4] + [("...", len(st) - 10)] + st[-6:]
+    fewest = min((b for n, b in st if isinstance(b, int) and n not in ("feasibility", "chord-split")), default=None)
+    text = " ".join("(%d more)" % b if n == "..." else "%s:%s" % (n, b) for n, b in shown)
+    return text + ("; fewest %s" % fewest if fewest is not None else "")
 
 
 def collect(sets_dir, results_dir, name):
@@ -122,6 +129,7 @@ def collect(sets_dir, results_dir, name):
                     "mesh": os.path.join(root, g, n + ".mesh"),
                     "map": os.path.join(root, "%s_%s" % (g, dom), "%s_%s.txt" % (n, dom)),
                     "original_tets": info["original_tets"], "faces": info.get("faces"),
+                    "set_tets": info.get("set_tets") if g == group else None,
                     "decimated_faces": info.get("decimated")}
             if info["input_failure"] and not os.path.exists(case["mesh"]):
                 case["status"] = "input failed"
@@ -142,6 +150,7 @@ def collect(sets_dir, results_dir, name):
                     case.update({
                         "status": "volume certified" if r.get("certified") else "volume not certified",
                         "tets_in": r.get("tets_in"), "tets_out": r.get("tets_out"), "time_s": r.get("time_s"),
+                        "cpu_s": r.get("cpu_s") if (r.get("cpu_s") or -1) >= 0 else None,
                         "exit_code": r.get("exit_code"), "timed_out": r.get("timed_out"),
                         "bad_tets": (r.get("negative", 0) or 0) + (r.get("zero", 0) or 0)
                         if (r.get("negative", -1) or 0) >= 0 else None,
@@ -220,8 +229,13 @@ def set_summary(name, cases):
             pct(statistics.median(vg)), pct(max(vg)), pct(statistics.median(tg)) if tg else "-", pct(max(tg)) if tg else "-",
             "; estimated with per-domain splits only median %s / max %s" % (pct(statistics.median(te)), pct(max(te))) if te else ""))
     if ts:
-        lines.append("Time (volmap-map, all run cases): median %.2f s / max %.2f s; %d cases over 10 s, %d over 60 s." % (
+        lines.append("Time (volmap-map wall clock, all run cases): median %.2f s / max %.2f s; %d cases over 10 s, %d over 60 s." % (
             statistics.median(ts), max(ts), sum(t > 10 for t in ts), sum(t > 60 for t in ts)))
+    cpu = [c["cpu_s"] for c in cases if c.get("cpu_s") is not None]
+    if cpu:
+        lines.append("CPU time (user + system, %d cases): median %.2f s / max %.2f s; CPU / wall median %.2f (the machine's load)." % (
+            len(cpu), statistics.median(cpu), max(cpu),
+            statistics.median([c["cpu_s"] / c["time_s"] for c in cases if c.get("cpu_s") is not None and c.get("time_s")])))
     per_dom = ["", "| domain | cases | certified | surface-map failed | volume not certified |", "|:--|--:|--:|--:|--:|"]
     for dom in DOMAINS:
         dc = [c for c in cases if c["domain"] == dom]
@@ -232,7 +246,10 @@ def set_summary(name, cases):
 
 
 def size_of(c):
-    return c.get("tets_in") or c.get("failed_mesh_tets") or c.get("original_tets") or 10 ** 12
+    for key in ("tets_in", "set_tets", "failed_mesh_tets", "original_tets"):
+        if (c.get(key) or 0) > 0:
+            return c[key]
+    return 10 ** 12
 
 
 def catalogue(cases, limit=3):
@@ -258,17 +275,18 @@ def catalogue(cases, limit=3):
     lines = []
     for title, pred in classes:
         hits = sorted([c for c in cases if pred(c)], key=lambda c: (size_of(c), c["case"]))
-        lines.append("#### %s: %d" % (title, len(hits)))
+        per_set = {}
+        for c in hits:
+            per_set[c["set"]] = per_set.get(c["set"], 0) + 1
+        lines.append("#### %s: %d%s" % (title, len(hits), " (" + ", ".join("%s %d" % kv for kv in per_set.items()) + ")" if per_set else ""))
         if not hits:
             lines.append("")
             continue
         lines.append("")
         for c in hits[:limit]:
             detail = []
-            if c.get("tets_in"):
-                detail.append("%d tets" % c["tets_in"])
-            elif c.get("failed_mesh_tets"):
-                detail.append("%d tets" % c["failed_mesh_tets"])
+            if size_of(c) < 10 ** 12:
+                detail.append("%d tets" % size_of(c))
             if c.get("bad_tets"):
                 detail.append("%d bad tets" % c["bad_tets"])
             if c.get("sphere_plain_negative"):
@@ -276,7 +294,7 @@ def catalogue(cases, limit=3):
             if c.get("volume_growth") is not None and "growth" in title:
                 detail.append("volume growth %s, total %s" % (pct(c["volume_growth"]), pct(c.get("total_growth") or 0)))
             if c.get("time_s") is not None and ("Time" in title or "Volume" in title or "volume" in title):
-                detail.append("%.1f s" % c["time_s"])
+                detail.append("%.1f s" % c["time_s"] + (" wall, %.1f s CPU" % c["cpu_s"] if c.get("cpu_s") is not None else ""))
             lines.append("- `%s/%s` (%s)" % (c["set"], c["case"], ", ".join(detail)))
             lines.append("  - mesh `%s`%s" % (c.get("mesh"), ", map `%s`" % c["map"] if c.get("map") else ""))
             why = c.get("reason") or c.get("stderr") or c.get("failure")
@@ -284,7 +302,7 @@ def catalogue(cases, limit=3):
                 lines.append("  - %s" % why[:400].replace("\n", " "))
             if c.get("stages") and c["status"] == "volume not certified":
                 lines.append("  - stages (non-positive tets after each): %s" % c["stages"])
-        others = [c["case"] for c in hits[limit:]]
+        others = ["%s/%s" % (c["set"], c["case"]) for c in hits[limit:]]
         if others:
             lines.append("- also: " + ", ".join(others[:40]) + (" ..." if len(others) > 40 else ""))
         lines.append("")
@@ -324,10 +342,14 @@ def main():
         all_cases += cases
         out += set_summary(name, cases)
         table = os.path.join(results_dir, name, "table.md")
-        out.append("volmap-run table: `%s`" % table)
-        out.append("")
-        out += catalogue(cases)
+        if os.path.exists(table):
+            out.append("<details><summary>volmap-run table (%s)</summary>\n" % table)
+            with open(table) as f:
+                out.append(f.read().replace("\n### ", "\n##### "))
+            out.append("</details>\n")
     out += maps_summary(results_dir)
+    out += ["## Failure catalogue (all sets; smallest cases first)", ""]
+    out += catalogue(all_cases)
     with open(os.path.join(results_dir, "cases.jsonl"), "w") as f:
         for c in all_cases:
             f.write(json.dumps(c) + "\n")
