@@ -33,12 +33,11 @@
 set -euo pipefail
 
 [ $# -ge 2 ] || { sed -n '2,30p' "$0"; exit 2; }
-BIN=$(cd "$1" && pwd)
-mkdir -p "$2"
-OUT=$(cd "$2" && pwd)
+source "$(dirname "$0")/common.sh"
+BIN=$(absolute_dir "$1")
+OUT=$(absolute_dir "$2")
 shift 2
-SETS=("$@")
-[ ${#SETS[@]} -gt 0 ] || SETS=(thin thin_coarse coarse g1sphere tetmeshes maps surfaces)
+SETS=("${@:-${ALL_SETS[@]}}")
 DATA=${VOLMAP_DATA:-/work/shared/data}
 DECIMATE=${DECIMATE:-22000}
 STEP_TIMEOUT=${STEP_TIMEOUT:-3600}

@@ -25,13 +25,12 @@
 set -euo pipefail
 
 [ $# -ge 3 ] || { sed -n '2,25p' "$0"; exit 2; }
-BIN=$(cd "$1" && pwd)
-SETS_DIR=$(cd "$2" && pwd)
-mkdir -p "$3"
-RESULTS=$(cd "$3" && pwd)
+source "$(dirname "$0")/common.sh"
+BIN=$(absolute_dir "$1")
+SETS_DIR=$(absolute_dir "$2")
+RESULTS=$(absolute_dir "$3")
 shift 3
-SETS=("$@")
-[ ${#SETS[@]} -gt 0 ] || SETS=(thin thin_coarse coarse g1sphere tetmeshes maps surfaces)
+SETS=("${@:-${ALL_SETS[@]}}")
 TIME_LIMIT=${TIME_LIMIT:-60}
 TIMEOUT=${TIMEOUT:-150}
 
