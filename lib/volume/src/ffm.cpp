@@ -570,25 +570,19 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   return finish(x, eps);
 }
 
-LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
-                                       const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options) {
   const TimeBudget budget(options.time_limit_seconds);
   LocalUntangleResult result;
-  const std::size_t nv = target_xyz.size() / 3, nt = tets.size() / 4;
-  if (source_xyz.size() != target_xyz.size() || locked.size() != nv || tets.size() % 4 != 0)
-    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
+  const std::size_t nv = source.num_vertex_slots(), nt = source.num_tet_slots();
+  if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
+    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: the mesh has tombstones (compact it first)");
+  if (target_xyz.size() != 3 * nv || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
+  const std::vector<double>& source_xyz = source.positions();
+  const std::vector<std::uint32_t>& tets = source.tet_vertex_array();
   std::vector<std::uint32_t> bad = nonpositive_tets(target_xyz, tets);
   result.nonpositive_before = result.nonpositive_after = bad.size();
   if (bad.empty()) return result;
-  // Vertex → tets CSR.
-  std::vector<std::uint32_t> vt_offset(nv + 1, 0), vt_tets(4 * nt);
-  for (std::uint32_t v : tets) ++vt_offset[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) vt_offset[v + 1] += vt_offset[v];
-  {
-    std::vector<std::uint32_t> fill(vt_offset.begin(), vt_offset.end() - 1);
-    for (std::size_t s = 0; s < 4 * nt; ++s) vt_tets[fill[tets[s]]++] = std::uint32_t(s / 4);
-  }
   int rings = options.rings;
   bool other_reference_tried = false;
   ReferenceShape reference = options.reference;
@@ -610,9 +604,9 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     for (int r = 0; r < rings; ++r) {
       next.clear();
       for (std::uint32_t v : frontier)
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k)
+        for (TetId t : source.vertex_tets(VertexId(v)))
           for (int j = 0; j < 4; ++j) {
-            const std::uint32_t u = tets[4 * std::size_t(vt_tets[k]) + j];
+            const std::uint32_t u = source.tet_vertex(t, j).idx();
             if (!in_region[u]) {
               in_region[u] = 1;
               next.push_back(u);
@@ -625,7 +619,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     std::vector<std::uint32_t> sub_tets, sub_vertices;
     for (std::size_t v = 0; v < nv; ++v)
       if (in_region[v] && !locked[v])
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k) tet_in[vt_tets[k]] = 1;
+        for (TetId t : source.vertex_tets(VertexId(std::uint32_t(v)))) tet_in[t.idx()] = 1;
     for (std::size_t t = 0; t < nt; ++t) {
       if (!tet_in[t]) continue;
       for (int k = 0; k < 4; ++k) {
