@@ -111,7 +111,7 @@ TEST_CASE("split replay: the refined tets' boundary is the working surface, with
       grid.vertex_labels.insert(grid.vertex_labels.begin(), 7);
       for (auto& v : grid.tets) ++v;
     }
-    const SourceTetMesh source(grid);
+    SourceTetMesh source(grid);
     WorkingSurface s(source.boundary_surface(), source.num_input_vertices());
     // Split every third edge, then some edges made by those splits.
     std::vector<EdgeHandle> edges(s.mesh.edges().begin(), s.mesh.edges().end());
@@ -119,6 +119,10 @@ TEST_CASE("split replay: the refined tets' boundary is the working surface, with
     const std::size_t after_first = s.mesh.n_edges();
     for (std::size_t i = edges.size(); i < after_first; i += 4) s.split_edge(EdgeHandle(static_cast<int>(i)));
     const auto refined = source.refine(s.splits);
+    // A second replay starts again from the input (the first edited the TetMesh in place).
+    const auto again = source.refine(s.splits);
+    CHECK(again.mesh.tets == refined.mesh.tets);
+    CHECK(again.mesh.xyz == refined.mesh.xyz);
     CHECK(refined.mesh.num_vertices() == grid.num_vertices() + s.splits.size());
     if (spare) {
       CHECK(refined.mesh.xyz[0] == 0.5);

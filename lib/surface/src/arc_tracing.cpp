@@ -1,11 +1,13 @@
-// Tracing the domain's graph on the working surface (see arc_tracing.hpp). Paths are Dijkstra
-// shortest paths (edge length) that enter no graph vertex but their end; the sector rule at both
-// ends keeps the arcs around every node in the domain's cyclic order.
+// Tracing the domain's graph on the working surface (see arc_tracing.hpp). Paths are shortest paths
+// (edge length; A* with the straight-line distance as lower bound) that enter no graph vertex but
+// their end; the sector rule at both ends keeps the arcs around every node in the domain's cyclic
+// order.
 #include "arc_tracing.hpp"
 
 #include <volmap/core/error.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -141,20 +143,31 @@ std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int no
   std::string between_a, between_b;
   const bool constrain_a = mark_sector(node_a, arc_a, sector_a_, &between_a);
   const bool constrain_b = mark_sector(node_b, arc_b, sector_b_, &between_b);
-  using Item = std::pair<double, std::uint32_t>;
+  // A* with the straight-line distance to b, scaled by (1 - 1e-6) so that it stays a consistent
+  // lower bound despite rounding: the first time b is popped its distance is the shortest.
+  const double* pb = s_.point(b);
+  const auto lower_bound = [&](VertexHandle v) {
+    const double* p = s_.point(v);
+    const double dx = p[0] - pb[0], dy = p[1] - pb[1], dz = p[2] - pb[2];
+    return (1 - 1e-6) * std::sqrt(dx * dx + dy * dy + dz * dz);
+  };
+  using Item = std::pair<double, std::uint32_t>;  // (distance + lower bound, vertex)
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   for (auto v : touched_) dist_[v] = kInf;
   touched_.clear();
   dist_[a.idx()] = 0;
   touched_.push_back(a.idx());
-  heap.push({0.0, static_cast<std::uint32_t>(a.idx())});
+  heap.push({lower_bound(a), static_cast<std::uint32_t>(a.idx())});
   bool reached = false;
   while (!heap.empty()) {
-    const double du = heap.top().first;
     const std::uint32_t ui = heap.top().second;
-    heap.pop();
-    if (du > dist_[ui]) continue;
     const VertexHandle u(static_cast<int>(ui));
+    const double du = dist_[ui];
+    if (heap.top().first > du + lower_bound(u)) {  // stale entry
+      heap.pop();
+      continue;
+    }
+    heap.pop();
     if (u == b) {
       reached = true;
       break;
@@ -170,7 +183,7 @@ std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int no
         if (dw == kInf) touched_.push_back(w.idx());
         dw = nd;
         pred_[w.idx()] = h;
-        heap.push({nd, static_cast<std::uint32_t>(w.idx())});
+        heap.push({nd + lower_bound(w), static_cast<std::uint32_t>(w.idx())});
       }
     });
   }

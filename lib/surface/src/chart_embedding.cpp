@@ -1,6 +1,6 @@
 // Chart flooding and the per-chart embedding (see chart_embedding.hpp). Validity of a chart is
 // decided exactly on the written doubles: every image triangle positive in its face plane
-// (orient2d) and about the domain's kernel and the centroid of all image points (orient3d).
+// (orient2d) and about the centroid of all image points (orient3d), the check's kernel.
 #include "chart_embedding.hpp"
 
 #include <volmap/core/error.hpp>
@@ -154,7 +154,6 @@ struct Chart {
   std::vector<std::uint32_t> first;
   std::vector<VertexHandle> nbr;
   std::vector<double> weight;
-  bool solved = false;
   int rounds = 0;  // stretch-reducing rounds so far
 };
 
@@ -163,9 +162,8 @@ struct Chart {
 // of graph vertices are re-projected in the chart's frame before each use.
 class ChartEmbedder {
  public:
-  ChartEmbedder(const WorkingSurface& s, const Point3& kernel, std::vector<double>& img)
+  ChartEmbedder(const WorkingSurface& s, std::vector<double>& img)
       : s_(s),
-        kernel_(kernel),
         img_(img),
         local_(s.num_vertices(), -1),
         uv_(2 * s.num_vertices(), 0.0),
@@ -173,22 +171,21 @@ class ChartEmbedder {
         sum_stretch_(s.num_vertices(), 0.0) {}
 
   Chart build(std::vector<FaceHandle> faces, const FaceFrame& frame, int face);
-  // Solves c (the first time) and re-solves it with stretch-reducing weights until every triangle is
-  // positive in the plane and about the kernel and, when given, about `also` (exact). Throws when
-  // the round budget is spent.
-  void embed_until_valid(Chart& c, const double* also);
-  bool valid(const Chart& c, const double* also) const;
+  // One sparse LDL^T solve of the weighted barycentric system; writes the interior vertices' images.
+  void solve(const Chart& c);
+  // Re-solves c with stretch-reducing weights until it is valid about k. Throws when the round
+  // budget is spent.
+  void reweight_until_valid(Chart& c, const double* k);
+  bool valid(const Chart& c, const double* k) const;
 
  private:
   const WorkingSurface& s_;
-  Point3 kernel_;
   std::vector<double>& img_;
   std::vector<std::int32_t> local_;  // vertex index -> index among its chart's interior vertices
   std::vector<double> uv_;           // face-plane coordinates
   std::vector<double> sum_area_, sum_stretch_;  // per-vertex stretch accumulators (zero between uses)
 
   void project_graph_vertices(const Chart& c);
-  void solve(const Chart& c);
   void reduce_stretch_weights(Chart& c);
 };
 
@@ -225,8 +222,8 @@ void ChartEmbedder::project_graph_vertices(const Chart& c) {
   for (auto v : c.graph_vertices) c.frame.to_plane(&img_[3 * v.idx()], &uv_[2 * v.idx()]);
 }
 
-// One sparse LDL^T solve of the weighted barycentric system; writes uv_ and img_ of interior vertices.
 void ChartEmbedder::solve(const Chart& c) {
+  if (c.interior.empty()) return;
   project_graph_vertices(c);
   const auto m = static_cast<Eigen::Index>(c.interior.size());
   std::vector<Eigen::Triplet<double>> trip;
@@ -262,10 +259,9 @@ void ChartEmbedder::solve(const Chart& c) {
 }
 
 // Every triangle of the chart strictly positive in the face plane (orient2d of the written points'
-// plane coordinates) and about the kernel and `also` (orient3d), exactly: a triangle the plane
-// embedding collapsed can still look positive about one point through the rounding of its 3D
-// coordinates.
-bool ChartEmbedder::valid(const Chart& c, const double* also) const {
+// plane coordinates) and about k (orient3d), exactly: a triangle the plane embedding collapsed can
+// still look positive about one point through the rounding of its 3D coordinates.
+bool ChartEmbedder::valid(const Chart& c, const double* k) const {
   for (auto f : c.faces) {
     const auto t = face_vertices(s_.mesh, f);
     double uv[3][2];
@@ -274,8 +270,7 @@ bool ChartEmbedder::valid(const Chart& c, const double* also) const {
     const double* a = &img_[3 * t[0].idx()];
     const double* b = &img_[3 * t[1].idx()];
     const double* d = &img_[3 * t[2].idx()];
-    if (orient3d(a, b, d, kernel_.data()) <= 0) return false;
-    if (also && orient3d(a, b, d, also) <= 0) return false;
+    if (orient3d(a, b, d, k) <= 0) return false;
   }
   return true;
 }
@@ -340,16 +335,10 @@ void ChartEmbedder::reduce_stretch_weights(Chart& c) {
     for (auto v : face_vertices(s_.mesh, f)) sum_area_[v.idx()] = sum_stretch_[v.idx()] = 0;
 }
 
-void ChartEmbedder::embed_until_valid(Chart& c, const double* also) {
-  if (c.interior.empty()) {
-    if (!valid(c, also)) fail("a chart of domain face " + std::to_string(c.face) + " has an inverted triangle between arcs");
-    return;
-  }
-  if (!c.solved) {
-    solve(c);
-    c.solved = true;
-  }
-  while (!valid(c, also)) {
+void ChartEmbedder::reweight_until_valid(Chart& c, const double* k) {
+  while (!valid(c, k)) {
+    if (c.interior.empty())
+      fail("a chart of domain face " + std::to_string(c.face) + " has an inverted triangle between arcs");
     if (c.rounds == kMaxReweightRounds)
       fail("the embedding of the chart of domain face " + std::to_string(c.face) + " stays inverted after " +
            std::to_string(kMaxReweightRounds) + " rounds of stretch-reducing weights");
@@ -367,22 +356,21 @@ std::vector<double> embed_charts(WorkingSurface& s, const Domain& d, const Embed
   const std::vector<int> chart_face = flood_charts(s, d);
   std::vector<std::vector<FaceHandle>> chart_faces(chart_face.size());
   for (auto f : s.mesh.faces()) chart_faces[s.mesh.property(s.chart, f)].push_back(f);
-  ChartEmbedder embedder(s, d.kernel, img);
+  ChartEmbedder embedder(s, img);
   std::vector<Chart> charts;
   for (std::size_t c = 0; c < chart_face.size(); ++c) {
     charts.push_back(embedder.build(std::move(chart_faces[c]), face_frame(d, d.faces[chart_face[c]]), chart_face[c]));
-    embedder.embed_until_valid(charts.back(), nullptr);
+    embedder.solve(charts.back());
   }
-  // The check's kernel is the centroid of all image points (vertex index order = vid order): charts
-  // with a triangle that is not positive about it (a near-degenerate one) are reweighted further,
-  // which moves the centroid a little.
+  // Valid about the check's kernel, the centroid of all image points (vertex index order = vid
+  // order). Reweighting a chart moves the centroid a little: repeat until no chart changes.
   for (int pass = 0;; ++pass) {
     const Point3 k = compensated_centroid(s.num_vertices(), [&](std::size_t i) { return &img[3 * i]; });
     bool all_valid = true;
     for (auto& c : charts)
       if (!embedder.valid(c, k.data())) {
         all_valid = false;
-        embedder.embed_until_valid(c, k.data());
+        embedder.reweight_until_valid(c, k.data());
       }
     if (all_valid) return img;
     if (pass == kMaxCentroidPasses) fail("the charts stay inverted about the centroid of the image points");

@@ -24,21 +24,28 @@ SourceTetMesh::SourceTetMesh(const TetMeshData& mesh) : data_(mesh) {
     used[mesh.tets[k]] = 1;
   }
   all_used_ = std::find(used.begin(), used.end(), 0) == used.end();
+  if (!all_used_) {
+    compact_of_.assign(nv, kInvalidIndex);
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (used[v]) {
+        compact_of_[v] = static_cast<std::uint32_t>(original_of_.size());
+        original_of_.push_back(v);
+      }
+  }
+  build_tet_mesh();
+}
+
+void SourceTetMesh::build_tet_mesh() {
+  edited_ = false;
   if (all_used_) {
-    tm_ = TetMesh(mesh);
+    tm_ = TetMesh(data_);
     return;
   }
   TetMeshData compact;
-  compact_of_.assign(nv, kInvalidIndex);
-  for (std::uint32_t v = 0; v < nv; ++v)
-    if (used[v]) {
-      compact_of_[v] = static_cast<std::uint32_t>(original_of_.size());
-      original_of_.push_back(v);
-      compact.xyz.insert(compact.xyz.end(), &mesh.xyz[3 * std::size_t(v)], &mesh.xyz[3 * std::size_t(v)] + 3);
-    }
-  compact.tets = mesh.tets;
+  for (auto v : original_of_) compact.xyz.insert(compact.xyz.end(), &data_.xyz[3 * std::size_t(v)], &data_.xyz[3 * std::size_t(v)] + 3);
+  compact.tets = data_.tets;
   for (auto& v : compact.tets) v = compact_of_[v];
-  compact.tet_labels = mesh.tet_labels;
+  compact.tet_labels = data_.tet_labels;
   tm_ = TetMesh(compact);
 }
 
@@ -55,19 +62,20 @@ std::uint32_t SourceTetMesh::to_output(std::uint32_t tid) const {
 }
 
 BoundarySurface SourceTetMesh::boundary_surface() const {
+  if (edited_) fail("internal: the boundary surface asked for after a replay");
   BoundarySurface b = extract_boundary_surface(tm_);
   if (!all_used_)
     for (auto v : b.mesh.vertices()) b.mesh.property(b.tet_vertex, v) = to_output(b.mesh.property(b.tet_vertex, v));
   return b;
 }
 
-SourceTetMesh::Refined SourceTetMesh::refine(const std::vector<EdgeSplit>& splits) const {
+SourceTetMesh::Refined SourceTetMesh::refine(const std::vector<EdgeSplit>& splits) {
   Refined out;
-  TetMesh refined_tm;
-  if (!splits.empty()) refined_tm = tm_;
-  const TetMesh& tm = splits.empty() ? tm_ : refined_tm;
+  if (edited_) build_tet_mesh();
+  edited_ = !splits.empty();
+  TetMesh& tm = tm_;
   for (const EdgeSplit& sp : splits) {
-    const VertexId m = refined_tm.split_edge(VertexId(to_tet_mesh(sp.a)), VertexId(to_tet_mesh(sp.b)), sp.p.data());
+    const VertexId m = tm.split_edge(VertexId(to_tet_mesh(sp.a)), VertexId(to_tet_mesh(sp.b)), sp.p.data());
     if (m.idx() != to_tet_mesh(sp.m))
       fail("internal: the tet mesh numbered split vertex " + std::to_string(sp.m) + " differently");
   }
@@ -75,14 +83,18 @@ SourceTetMesh::Refined SourceTetMesh::refine(const std::vector<EdgeSplit>& split
   if (splits.empty()) {
     out.mesh = data_;
   } else {
-    TetMeshData refined = tm.to_data();
+    // Splits reuse the parent's slot and append the other child: no tombstones, slot = tet id.
+    if (tm.num_tet_slots() != tm.num_tets()) fail("internal: the split replay left tombstones");
+    out.mesh.xyz.reserve(data_.xyz.size() + 3 * splits.size());
     out.mesh.xyz = data_.xyz;
     for (const EdgeSplit& sp : splits) out.mesh.xyz.insert(out.mesh.xyz.end(), sp.p.begin(), sp.p.end());
     out.mesh.vertex_labels = data_.vertex_labels;
     out.mesh.vertex_labels.resize(nv0 + splits.size(), 0);
-    out.mesh.tets = std::move(refined.tets);
-    for (auto& v : out.mesh.tets) v = to_output(v);
-    out.mesh.tet_labels = std::move(refined.tet_labels);
+    out.mesh.tets = tm.tet_vertex_array();
+    if (!all_used_)
+      for (auto& v : out.mesh.tets) v = to_output(v);
+    out.mesh.tet_labels = tm.tet_labels();
+    out.mesh.tet_labels.resize(tm.num_tets(), 0);
     const auto& xyz = out.mesh.xyz;
     for (std::size_t t = 0; t < out.mesh.num_tets(); ++t) {
       const std::uint32_t* q = &out.mesh.tets[4 * t];

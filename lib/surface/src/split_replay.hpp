@@ -25,13 +25,14 @@ class SourceTetMesh {
   explicit SourceTetMesh(const TetMeshData& mesh);
 
   const TetMeshData& data() const { return data_; }
-  const TetMesh& tet_mesh() const { return tm_; }
   std::uint32_t num_input_vertices() const { return static_cast<std::uint32_t>(data_.num_vertices()); }
 
-  // The boundary as an OpenMesh surface whose vertex property tet_vertex holds output ids.
+  // The input's boundary as an OpenMesh surface whose vertex property tet_vertex holds output ids
+  // (before any replay).
   BoundarySurface boundary_surface() const;
 
-  // Replays `splits` (in order) on a copy of the tets: every tet around a split edge becomes two.
+  // Replays `splits` (in order) on the tets: every tet around a split edge becomes two. The TetMesh
+  // is edited in place (no copy of the input's tets); a later call starts again from the input.
   // A child is positive iff its new vertex lies strictly on the replaced vertex's side; midpoint
   // rounding can break that, so every child is checked exactly. Returns the refined mesh in output
   // ids (new vertices labelled 0) and its outward boundary triangles. Throws Error(Failed) when a
@@ -40,7 +41,7 @@ class SourceTetMesh {
     TetMeshData mesh;
     std::vector<std::array<std::uint32_t, 3>> boundary;
   };
-  Refined refine(const std::vector<EdgeSplit>& splits) const;
+  Refined refine(const std::vector<EdgeSplit>& splits);
 
  private:
   const TetMeshData& data_;
@@ -48,7 +49,9 @@ class SourceTetMesh {
   std::vector<std::uint32_t> compact_of_;   // output id -> tet-mesh id (inputs only)
   std::vector<std::uint32_t> original_of_;  // tet-mesh id -> output id (used inputs only)
   TetMesh tm_;
+  bool edited_ = false;  // tm_ holds an earlier replay
 
+  void build_tet_mesh();
   std::uint32_t to_tet_mesh(std::uint32_t vid) const;
   std::uint32_t to_output(std::uint32_t tid) const;
 };

@@ -62,7 +62,7 @@ void subdivide(WorkingSurface& s, int rounds) {
   }
 }
 
-SurfaceMapResult run_attempt(const SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
+SurfaceMapResult run_attempt(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
                              const Attempt& attempt, const Point3& bmin, const Point3& bmax) {
   WorkingSurface surface(boundary, source.num_input_vertices());
   subdivide(surface, attempt.subdivisions);
@@ -92,7 +92,7 @@ SurfaceMapResult run_attempt(const SourceTetMesh& source, const BoundarySurface&
 
 SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain) {
   if (mesh.num_tets() == 0) bad_input("the mesh has no tets");
-  const SourceTetMesh source(mesh);
+  SourceTetMesh source(mesh);
   require_positive_tets(mesh);
   const BoundarySurface boundary = source.boundary_surface();
   require_sphere_topology(boundary);
