@@ -28,13 +28,6 @@ constexpr int kMaxCentroidPasses = 10;
 // Per round, a vertex's relative stretch is clamped to [1/kStretchClamp, kStretchClamp].
 constexpr double kStretchClamp = 1e4;
 
-// The three vertices of face f, counter-clockwise from outside.
-std::array<VertexHandle, 3> face_vertices(const SurfaceMesh& m, FaceHandle f) {
-  const HalfedgeHandle h = m.halfedge_handle(f);
-  const HalfedgeHandle n = m.next_halfedge_handle(h);
-  return {m.from_vertex_handle(h), m.to_vertex_handle(h), m.to_vertex_handle(n)};
-}
-
 // Nodes on their targets, arc vertices on the straight segment between the targets of the arc's
 // nodes, spaced by arc length.
 void place_graph(const WorkingSurface& s, const Domain& d, const EmbeddedGraph& g, std::vector<double>& img) {

@@ -1,6 +1,6 @@
-// Sphere maps (see surface_map.hpp). A sphere map is judged like every map (volmap-reference.md §5):
-// every image triangle must form a positive cone with the centroid k of the image points. The
-// central projection of a star-shaped map keeps every cone positive about the sphere's centre c,
+// Sphere maps (see surface_map.hpp; volmap-reference.md §4.3). A sphere map is judged like every
+// map (§5): every image triangle must form a positive cone with the centroid k of the image points.
+// The central projection of a star-shaped map keeps every cone positive about the sphere's centre c,
 // but a thin triangle whose three points lie close to one great circle has its plane close to c,
 // and k != c can lie on its wrong side. Such maps are balanced, in rounds until every cone is
 // positive about k:
@@ -14,10 +14,12 @@
 //    of them, so the cones stay positive about c, while the points crowded around q's direction
 //    spread out and k moves towards c.
 // Every accepted step is verified exactly; the result is re-checked with check_surface_map.
-#include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map.hpp>
+
+#include "split_replay.hpp"
+#include "working_surface.hpp"
 
 #include <algorithm>
 #include <array>
@@ -28,6 +30,8 @@
 
 namespace volmap {
 namespace {
+
+using namespace surface_detail;
 
 [[noreturn]] void fail(const std::string& reason) { throw Error(ErrorKind::Failed, "", 0, reason); }
 
@@ -76,16 +80,17 @@ std::array<double, 3> max_min_margin(const std::vector<std::array<double, 3>>& r
   return best;
 }
 
-// The image on the sphere: points (map order), outward triangles in map slots, and per point its
-// triangles and neighbours (CSR).
+// The image on the sphere as an OpenMesh surface: the boundary of the map's mesh with the image
+// points as its points (vertex index order = vid order).
 class SphereImage {
  public:
-  SphereImage(const TetMeshData& mesh, BoundaryMap& map, const Point3& centre, double radius);
+  SphereImage(const TetMeshData& mesh, const BoundaryMap& map, const Point3& centre, double radius);
+  void write_back(BoundaryMap& map) const;
 
   // All cones strictly positive about q (exact).
   bool valid_about(const double* q) const;
   Point3 centroid() const;
-  // Moves every point to the centre's projection of (x - c) / |x - c| * R + c.
+  // Moves every point to c + R (x - c) / |x - c|.
   void project();
   // Nudges the points of cones that rounding left non-positive about c by a few ulps.
   void repair_about_centre();
@@ -94,70 +99,65 @@ class SphereImage {
   // Re-centres on the point of the segment c -> k (k = centroid) nearest k inside the kernel.
   void recentre();
   // The points of the triangles that are not positive about k.
-  std::vector<std::uint32_t> points_of_bad_triangles(const double* k) const;
-  // Moves point i, within half its shortest edge, to where the smallest distance of its triangles'
-  // cone planes (through c and through k) is largest; kept only when every cone around it stays
-  // positive about c (exact) and that smallest distance grew.
-  void fatten(std::uint32_t i, const double* k);
+  std::vector<VertexHandle> points_of_bad_triangles(const double* k) const;
+  // Moves v, within half its shortest edge, to where the smallest distance of its cones' planes
+  // (through c and through k) is largest; kept only when every cone around it stays positive about
+  // c (exact) and that smallest distance grew.
+  void fatten(VertexHandle v, const double* k);
 
  private:
-  std::vector<double>& xyz_;
+  BoundarySurface s_;
   Point3 c_;
   double radius_;
-  std::vector<std::array<std::uint32_t, 3>> tris_;
-  std::vector<std::uint32_t> tri_first_, tri_of_;  // point -> triangles
-  std::vector<std::uint32_t> nbr_first_, nbr_;     // point -> neighbours
 
-  double* at(std::uint32_t i) { return &xyz_[3 * std::size_t(i)]; }
-  const double* at(std::uint32_t i) const { return &xyz_[3 * std::size_t(i)]; }
-  std::size_t size() const { return xyz_.size() / 3; }
-  bool positive_around(std::uint32_t i) const;
-  double smallest_margin(std::uint32_t i, const double* k) const;
+  double* at(VertexHandle v) { return s_.mesh.point(v).data(); }
+  const double* at(VertexHandle v) const { return s_.mesh.point(v).data(); }
+  bool positive(FaceHandle f, const double* q) const {
+    const auto t = face_vertices(s_.mesh, f);
+    return orient3d(at(t[0]), at(t[1]), at(t[2]), q) > 0;
+  }
+  bool positive_around(VertexHandle v) const;
+  double smallest_margin(VertexHandle v, const double* k) const;
   void put_on_sphere(const double* d, double* out) const;
 };
 
-SphereImage::SphereImage(const TetMeshData& mesh, BoundaryMap& map, const Point3& centre, double radius)
-    : xyz_(map.xyz), c_(centre), radius_(radius) {
+SphereImage::SphereImage(const TetMeshData& mesh, const BoundaryMap& map, const Point3& centre, double radius)
+    : s_(SourceTetMesh(mesh).boundary_surface()), c_(centre), radius_(radius) {
+  if (!s_.complete()) fail("the boundary surface of the map's mesh is not manifold");
   std::vector<std::int32_t> slot(mesh.num_vertices(), -1);
-  for (std::size_t i = 0; i < map.size(); ++i) slot[map.vids[i]] = static_cast<std::int32_t>(i);
-  for (auto hf : boundary_half_faces(mesh)) {
-    const auto f = half_face_vertices(mesh, hf);
-    if (slot[f[0]] < 0 || slot[f[1]] < 0 || slot[f[2]] < 0) fail("the map misses a boundary vertex");
-    tris_.push_back({std::uint32_t(slot[f[0]]), std::uint32_t(slot[f[1]]), std::uint32_t(slot[f[2]])});
+  for (std::size_t i = 0; i < map.size(); ++i)
+    if (map.vids[i] < slot.size()) slot[map.vids[i]] = static_cast<std::int32_t>(i);
+  for (auto v : s_.mesh.vertices()) {
+    const std::int32_t i = slot[s_.tet_vertex_of(v)];
+    if (i < 0) fail("the map misses boundary vertex " + std::to_string(s_.tet_vertex_of(v)));
+    s_.mesh.set_point(v, SurfaceMesh::Point(map.xyz[3 * i], map.xyz[3 * i + 1], map.xyz[3 * i + 2]));
   }
-  const std::size_t n = size();
-  tri_first_.assign(n + 1, 0);
-  for (const auto& t : tris_)
-    for (auto v : t) ++tri_first_[v + 1];
-  for (std::size_t i = 0; i < n; ++i) tri_first_[i + 1] += tri_first_[i];
-  tri_of_.resize(tri_first_[n]);
-  std::vector<std::uint32_t> fill(tri_first_.begin(), tri_first_.end() - 1);
-  for (std::uint32_t t = 0; t < tris_.size(); ++t)
-    for (auto v : tris_[t]) tri_of_[fill[v]++] = t;
-  // In a closed oriented surface every neighbour w of v follows v in exactly one triangle.
-  nbr_first_ = tri_first_;
-  nbr_.resize(tri_of_.size());
-  fill.assign(nbr_first_.begin(), nbr_first_.end() - 1);
-  for (const auto& t : tris_)
-    for (int k = 0; k < 3; ++k) nbr_[fill[t[k]]++] = t[(k + 1) % 3];
+}
+
+void SphereImage::write_back(BoundaryMap& map) const {
+  std::vector<std::int32_t> slot(s_.surface_vertex.size(), -1);
+  for (std::size_t i = 0; i < map.size(); ++i)
+    if (map.vids[i] < slot.size()) slot[map.vids[i]] = static_cast<std::int32_t>(i);
+  for (auto v : s_.mesh.vertices()) {
+    const std::int32_t i = slot[s_.tet_vertex_of(v)];
+    for (int k = 0; k < 3; ++k) map.xyz[3 * i + k] = at(v)[k];
+  }
 }
 
 bool SphereImage::valid_about(const double* q) const {
-  for (const auto& t : tris_)
-    if (orient3d(at(t[0]), at(t[1]), at(t[2]), q) <= 0) return false;
+  for (auto f : s_.mesh.faces())
+    if (!positive(f, q)) return false;
   return true;
 }
 
-bool SphereImage::positive_around(std::uint32_t i) const {
-  for (std::uint32_t k = tri_first_[i]; k < tri_first_[i + 1]; ++k) {
-    const auto& t = tris_[tri_of_[k]];
-    if (orient3d(at(t[0]), at(t[1]), at(t[2]), c_.data()) <= 0) return false;
-  }
+bool SphereImage::positive_around(VertexHandle v) const {
+  for (auto f : s_.mesh.vf_range(v))
+    if (!positive(f, c_.data())) return false;
   return true;
 }
 
-Point3 SphereImage::centroid() const {  // the check's kernel: map order is vid order
-  return compensated_centroid(size(), [&](std::size_t i) { return at(static_cast<std::uint32_t>(i)); });
+Point3 SphereImage::centroid() const {  // the check's kernel (vertex index order = vid order)
+  return compensated_centroid(s_.mesh.n_vertices(), [&](std::size_t i) { return at(VertexHandle(static_cast<int>(i))); });
 }
 
 void SphereImage::put_on_sphere(const double* d, double* out) const {
@@ -166,8 +166,8 @@ void SphereImage::put_on_sphere(const double* d, double* out) const {
 }
 
 void SphereImage::project() {
-  for (std::size_t i = 0; i < size(); ++i) {
-    double* p = at(static_cast<std::uint32_t>(i));
+  for (auto v : s_.mesh.vertices()) {
+    double* p = at(v);
     const double d[3] = {p[0] - c_[0], p[1] - c_[1], p[2] - c_[2]};
     if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0)) fail("a map point coincides with the sphere centre");
     put_on_sphere(d, p);
@@ -175,9 +175,9 @@ void SphereImage::project() {
 }
 
 void SphereImage::repair_about_centre() {
-  for (const auto& t : tris_) {
-    if (orient3d(at(t[0]), at(t[1]), at(t[2]), c_.data()) > 0) continue;
-    for (auto v : t) {
+  for (auto f : s_.mesh.faces()) {
+    if (positive(f, c_.data())) continue;
+    for (auto v : face_vertices(s_.mesh, f)) {
       double* p = at(v);
       const Point3 orig{p[0], p[1], p[2]};
       bool fixed = positive_around(v);
@@ -200,13 +200,13 @@ void SphereImage::repair_about_centre() {
 }
 
 void SphereImage::relax() {
-  for (std::uint32_t i = 0; i < size(); ++i) {
+  for (auto v : s_.mesh.vertices()) {
     double mean[3] = {0, 0, 0};
-    for (std::uint32_t k = nbr_first_[i]; k < nbr_first_[i + 1]; ++k)
-      for (int j = 0; j < 3; ++j) mean[j] += at(nbr_[k])[j] - c_[j];
+    for (auto w : s_.mesh.vv_range(v))
+      for (int j = 0; j < 3; ++j) mean[j] += at(w)[j] - c_[j];
     const double mn = std::sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
     if (!(mn > 0)) continue;
-    double* p = at(i);
+    double* p = at(v);
     const Point3 old{p[0], p[1], p[2]};
     // The full step, else a half and a quarter step (between the two directions), else none.
     for (double t = 1; t >= 0.25; t *= 0.5) {
@@ -214,7 +214,7 @@ void SphereImage::relax() {
       for (int j = 0; j < 3; ++j) d[j] = (1 - t) * (old[j] - c_[j]) / radius_ + t * mean[j] / mn;
       if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 1e-12)) continue;
       put_on_sphere(d, p);
-      if (positive_around(i)) break;
+      if (positive_around(v)) break;
       for (int j = 0; j < 3; ++j) p[j] = old[j];
     }
   }
@@ -235,9 +235,9 @@ void SphereImage::recentre() {
   // Klein-model translation taking a to 0: y -> (y_par - a + sqrt(1 - |a|^2) y_perp) / (1 - a.y),
   // with y_par the component of y along a. It maps the unit sphere onto itself and planes to planes.
   const double s = std::sqrt(1 - a2);
-  const std::vector<double> before = xyz_;
-  for (std::size_t i = 0; i < size(); ++i) {
-    double* p = at(static_cast<std::uint32_t>(i));
+  std::vector<SurfaceMesh::Point> before(s_.mesh.points(), s_.mesh.points() + s_.mesh.n_vertices());
+  for (auto v : s_.mesh.vertices()) {
+    double* p = at(v);
     const double y[3] = {(p[0] - c_[0]) / radius_, (p[1] - c_[1]) / radius_, (p[2] - c_[2]) / radius_};
     const double ay = a[0] * y[0] + a[1] * y[1] + a[2] * y[2];
     const double par = ay / a2;  // y_par = par * a
@@ -245,76 +245,81 @@ void SphereImage::recentre() {
     for (int j = 0; j < 3; ++j) z[j] = (par * a[j] - a[j] + s * (y[j] - par * a[j])) / (1 - ay);
     put_on_sphere(z, p);
   }
-  if (!valid_about(c_.data())) xyz_ = before;  // rounding broke a cone: keep the previous image
+  if (!valid_about(c_.data()))  // rounding broke a cone: keep the previous image
+    for (auto v : s_.mesh.vertices()) s_.mesh.set_point(v, before[static_cast<std::size_t>(v.idx())]);
 }
 
-
-std::vector<std::uint32_t> SphereImage::points_of_bad_triangles(const double* k) const {
-  std::vector<std::uint32_t> out;
-  for (const auto& t : tris_)
-    if (orient3d(at(t[0]), at(t[1]), at(t[2]), k) <= 0) out.insert(out.end(), t.begin(), t.end());
+std::vector<VertexHandle> SphereImage::points_of_bad_triangles(const double* k) const {
+  std::vector<VertexHandle> out;
+  for (auto f : s_.mesh.faces())
+    if (!positive(f, k))
+      for (auto v : face_vertices(s_.mesh, f)) out.push_back(v);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
-// Smallest signed distance from c and from k to the cone planes of the triangles around i (>0 on
-// the positive side), in doubles: a ranking, the exact predicate decides validity.
-double SphereImage::smallest_margin(std::uint32_t i, const double* k) const {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::uint32_t e = tri_first_[i]; e < tri_first_[i + 1]; ++e) {
-    const auto& t = tris_[tri_of_[e]];
-    for (const double* q : {static_cast<const double*>(c_.data()), k}) {
-      double u[3], w[3], p[3];
-      for (int j = 0; j < 3; ++j) u[j] = at(t[1])[j] - q[j], w[j] = at(t[2])[j] - q[j], p[j] = at(t[0])[j] - q[j];
-      const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+// The cone planes around v: for each face (v, x, y) and q in {c, k}, the plane through q, x, y with
+// its unit normal N = (x - q) x (y - q) / |.|; v's cone is positive about q iff (v - q).N > 0.
+template <class F>
+void for_each_cone_plane(const SurfaceMesh& m, VertexHandle v, const double* c, const double* k, F&& f) {
+  for (auto fh : m.vf_range(v)) {
+    const auto t = face_vertices(m, fh);
+    const int at_v = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    const double* x = m.point(t[(at_v + 1) % 3]).data();
+    const double* y = m.point(t[(at_v + 2) % 3]).data();
+    for (const double* q : {c, k}) {
+      const double u[3] = {x[0] - q[0], x[1] - q[1], x[2] - q[2]}, w[3] = {y[0] - q[0], y[1] - q[1], y[2] - q[2]};
+      double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
       const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      best = std::min(best, nn > 0 ? (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]) / nn : -1.0);
+      if (nn > 0)
+        for (auto& z : n) z /= nn;
+      f(q, n, nn > 0, x);
     }
   }
+}
+
+// Smallest signed distance from c and from k to the cone planes around v (> 0 on the positive
+// side), in doubles: a ranking, the exact predicate decides validity.
+double SphereImage::smallest_margin(VertexHandle v, const double* k) const {
+  const double* p = at(v);
+  double best = std::numeric_limits<double>::infinity();
+  for_each_cone_plane(s_.mesh, v, c_.data(), k, [&](const double* q, const double* n, bool ok, const double*) {
+    best = std::min(best, ok ? (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2] : -1.0);
+  });
   return best;
 }
 
-void SphereImage::fatten(std::uint32_t i, const double* k) {
-  double* v = at(i);
-  const Point3 old{v[0], v[1], v[2]};
+void SphereImage::fatten(VertexHandle v, const double* k) {
+  double* p = at(v);
+  const Point3 old{p[0], p[1], p[2]};
   // Tangent frame at v.
-  const double r[3] = {(v[0] - c_[0]) / radius_, (v[1] - c_[1]) / radius_, (v[2] - c_[2]) / radius_};
+  const double r[3] = {(p[0] - c_[0]) / radius_, (p[1] - c_[1]) / radius_, (p[2] - c_[2]) / radius_};
   const double axis[3] = {std::fabs(r[0]) < 0.6 ? 1.0 : 0.0, std::fabs(r[0]) < 0.6 ? 0.0 : 1.0, 0.0};
   double e1[3] = {r[1] * axis[2] - r[2] * axis[1], r[2] * axis[0] - r[0] * axis[2], r[0] * axis[1] - r[1] * axis[0]};
   const double n1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
   for (auto& x : e1) x /= n1;
   const double e2[3] = {r[1] * e1[2] - r[2] * e1[1], r[2] * e1[0] - r[0] * e1[2], r[0] * e1[1] - r[1] * e1[0]};
-  // One row per (triangle, q): margin (v - q).N + x e1.N + y e2.N with N the unit normal of the
-  // plane through q and the triangle's other two points.
+  // One row per cone plane: margin (v - q).N + x e1.N + y e2.N.
   std::vector<std::array<double, 3>> rows;
+  bool degenerate = false;
   double shortest = std::numeric_limits<double>::infinity();
-  for (std::uint32_t e = tri_first_[i]; e < tri_first_[i + 1]; ++e) {
-    const auto& t = tris_[tri_of_[e]];
-    const int at_i = t[0] == i ? 0 : t[1] == i ? 1 : 2;
-    const double* x = at(t[(at_i + 1) % 3]);
-    const double* y = at(t[(at_i + 2) % 3]);
-    for (const double* q : {static_cast<const double*>(c_.data()), k}) {
-      double u[3], w[3];
-      for (int j = 0; j < 3; ++j) u[j] = x[j] - q[j], w[j] = y[j] - q[j];
-      double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(nn > 0)) return;
-      for (auto& z : n) z /= nn;
-      rows.push_back({(v[0] - q[0]) * n[0] + (v[1] - q[1]) * n[1] + (v[2] - q[2]) * n[2],
-                      e1[0] * n[0] + e1[1] * n[1] + e1[2] * n[2], e2[0] * n[0] + e2[1] * n[1] + e2[2] * n[2]});
-    }
-    const double dx = x[0] - v[0], dy = x[1] - v[1], dz = x[2] - v[2];
+  for_each_cone_plane(s_.mesh, v, c_.data(), k, [&](const double* q, const double* n, bool ok, const double* x) {
+    degenerate |= !ok;
+    rows.push_back({(p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2],
+                    e1[0] * n[0] + e1[1] * n[1] + e1[2] * n[2], e2[0] * n[0] + e2[1] * n[1] + e2[2] * n[2]});
+    const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
     shortest = std::min(shortest, std::sqrt(dx * dx + dy * dy + dz * dz));
-  }
-  const double before = smallest_margin(i, k);
+  });
+  if (degenerate) return;
+  const double before = smallest_margin(v, k);
   const auto opt = max_min_margin(rows, 0.5 * shortest);
   if (!(opt[2] > before)) return;
   const double d[3] = {old[0] - c_[0] + opt[0] * e1[0] + opt[1] * e2[0], old[1] - c_[1] + opt[0] * e1[1] + opt[1] * e2[1],
                        old[2] - c_[2] + opt[0] * e1[2] + opt[1] * e2[2]};
-  put_on_sphere(d, v);
-  if (!positive_around(i) || !(smallest_margin(i, k) > before))
-    for (int j = 0; j < 3; ++j) v[j] = old[j];
+  put_on_sphere(d, p);
+  if (!positive_around(v) || !(smallest_margin(v, k) > before))
+    for (int j = 0; j < 3; ++j) p[j] = old[j];
 }
 
 }  // namespace
@@ -328,7 +333,7 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     fail("the projected sphere map has cones that are not positive about the centre");
   for (int sweep = 0;; ++sweep) {
     const Point3 k = image.centroid();
-    const std::vector<std::uint32_t> bad = image.points_of_bad_triangles(k.data());
+    const std::vector<VertexHandle> bad = image.points_of_bad_triangles(k.data());
     if (bad.empty()) break;
     if (sweep >= kMaxSweeps)
       fail("the sphere map stays inverted about the centroid of its points after " + std::to_string(kMaxSweeps) +
@@ -337,6 +342,7 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     if (sweep % kSweepsPerRecentre == 0) image.recentre();
     image.relax();
   }
+  image.write_back(out.map);
   SurfaceMapCheckOptions opt;
   opt.sphere_radius = radius;
   opt.sphere_centre = centre;

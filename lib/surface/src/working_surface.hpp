@@ -37,6 +37,13 @@ struct EdgeSplit {
   std::array<double, 3> p;
 };
 
+// The three vertices of face f, counter-clockwise from outside.
+inline std::array<VertexHandle, 3> face_vertices(const SurfaceMesh& m, FaceHandle f) {
+  const HalfedgeHandle h = m.halfedge_handle(f);
+  const HalfedgeHandle n = m.next_halfedge_handle(h);
+  return {m.from_vertex_handle(h), m.to_vertex_handle(h), m.to_vertex_handle(n)};
+}
+
 class WorkingSurface {
  public:
   // `first_new_vid`: the output id of the first split vertex (the input's vertex count).
