@@ -127,7 +127,12 @@ int main(int argc, char** argv) {
 
     if (json) {
       nlohmann::json stages = nlohmann::json::array();
-      for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}, {"nonpositive_after", s.nonpositive_after}});
+      for (const auto& s : r.stages) {
+        nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}, {"nonpositive_after", s.nonpositive_after},
+                                {"tets_after", s.tets_after}};
+        if (!s.failure.empty()) stage["failure"] = s.failure;
+        stages.push_back(stage);
+      }
       nlohmann::json j{{"ok", certified},
                        {"certified", certified},
                        {"method", method},
@@ -166,7 +171,9 @@ int main(int argc, char** argv) {
         std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
       else if (!certified && refined_path.empty() && !no_refine)
         std::printf("  refinement was off: give --refined-input <path> to allow chord splits and cone repair\n");
-      for (const auto& s : r.stages) std::printf("  %-18s %8.3f s  non-positive after: %zu\n", s.name.c_str(), s.seconds, s.nonpositive_after);
+      for (const auto& s : r.stages)
+        std::printf("  %-22s %8.3f s  non-positive after: %zu  tets: %zu%s%s\n", s.name.c_str(), s.seconds, s.nonpositive_after, s.tets_after,
+                    s.failure.empty() ? "" : "  (failed, undone: ", s.failure.empty() ? "" : (s.failure + ")").c_str());
     }
     return certified ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
   }, &json);

@@ -73,6 +73,17 @@ inline bool inverse3(const double* A, double* inv) {
   return true;
 }
 
+// A source tet's edge matrix T is a usable rest shape when det T < 0 (VOLMAP-positive) with a
+// relative volume |det T| / (Σ|edge|²)^{3/2} above 1e-9: flatter tets (exactly positive slivers from
+// refinement, or ones whose double determinant has the wrong sign) make M = T⁻¹ and the energy
+// numerically meaningless, so they take the regular reference instead (docs/mapping.md §5).
+inline bool rest_shape_usable(const double* T) {
+  const double d = det3(T);
+  double sq = 0;
+  for (int k = 0; k < 9; ++k) sq += T[k] * T[k];
+  return std::isfinite(d) && d < 0 && -d > 1e-9 * sq * std::sqrt(sq);
+}
+
 inline void matmul3(const double* A, const double* B, double* C) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
@@ -90,6 +101,7 @@ struct FfmEnergy::Impl {
   double theta = 0.5;
   std::vector<double> M;       // 9 per tet: R⁻¹
   std::vector<double> weight;  // per tet: vol_ref
+  std::size_t unusable_rest_shapes = 0;  // source tets given the regular reference (RestShape only)
   // Work buffers (evaluation is not re-entrant).
   mutable std::vector<double> x;          // 3*nv scaled positions
   mutable std::vector<double> tet_grad;   // 12 per tet
@@ -236,27 +248,32 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
 
   m.M.resize(9 * m.nt);
   m.weight.resize(m.nt);
+  // Mirrored regular tet (1,1,1),(1,−1,−1),(−1,1,−1),(−1,−1,1) of volume vol(D)/T: edge determinant
+  // −16, like VOLMAP tets. The reference of every tet for RegularTet, and the stand-in for a source
+  // tet whose rest shape is unusable in double precision for RestShape.
+  const double mean_volume = domain_volume / double(m.nt);
+  const double side = std::cbrt(6.0 * mean_volume / 16.0);
+  const double regular[9] = {0, -2 * side, -2 * side, -2 * side, 0, -2 * side, -2 * side, -2 * side, 0};
+  double regular_inverse[9];
+  inverse3(regular, regular_inverse);
+  const auto use_regular = [&](std::size_t t) {
+    std::copy(regular_inverse, regular_inverse + 9, &m.M[9 * t]);
+    m.weight[t] = mean_volume;
+  };
   if (reference == ReferenceShape::RegularTet) {
-    // Mirrored regular tet (1,1,1),(1,−1,−1),(−1,1,−1),(−1,−1,1): edge determinant −16, like VOLMAP tets.
-    const double v = domain_volume / double(m.nt);
-    const double s = std::cbrt(6.0 * v / 16.0);
-    const double R[9] = {0, -2 * s, -2 * s, -2 * s, 0, -2 * s, -2 * s, -2 * s, 0};
-    double Minv[9];
-    inverse3(R, Minv);
-    for (std::size_t t = 0; t < m.nt; ++t) {
-      std::copy(Minv, Minv + 9, &m.M[9 * t]);
-      m.weight[t] = v;
-    }
+    for (std::size_t t = 0; t < m.nt; ++t) use_regular(t);
   } else {
     const double c = std::cbrt(domain_volume / source_volume);
     double T[9];
     for (std::size_t t = 0; t < m.nt; ++t) {
       edge_matrix(source_xyz.data(), &tets[4 * t], T);
       for (double& e : T) e *= c;
-      const double d = det3(T);
-      if (!(d < 0) || !inverse3(T, &m.M[9 * t]))
-        throw Error(ErrorKind::BadInput, "", 0, "ffm: source tet " + std::to_string(t) + " is degenerate or inverted (rest shape unusable)");
-      m.weight[t] = -d / 6.0;
+      if (rest_shape_usable(T) && inverse3(T, &m.M[9 * t])) {
+        m.weight[t] = -det3(T) / 6.0;
+      } else {
+        use_regular(t);
+        ++m.unusable_rest_shapes;
+      }
     }
   }
   m.tet_grad.resize(12 * m.nt);
@@ -265,6 +282,8 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
 }
 
 FfmEnergy::~FfmEnergy() = default;
+
+std::size_t FfmEnergy::unusable_rest_shapes() const { return impl_->unusable_rest_shapes; }
 
 std::size_t FfmEnergy::num_variables() const { return impl_->layout.num_variables(); }
 

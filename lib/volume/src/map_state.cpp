@@ -86,14 +86,19 @@ std::size_t MapState::count_nonpositive() const {
 StageJudge::StageJudge(MapState& state) : state_(state) {}
 StageJudge::~StageJudge() = default;
 
+void StageJudge::restore_best() {
+  if (!best_mesh_) throw Error(ErrorKind::Failed, "", 0, "StageJudge: no state judged yet to restore");
+  if (state_.source.topology_version() != best_version_) state_.source = *best_mesh_;  // resets the properties...
+  state_.target.data() = best_target_;                                                // ...restored here
+  state_.locked.data() = best_locked_;
+  best_version_ = state_.source.topology_version();
+}
+
 StageVerdict StageJudge::judge() {
   StageVerdict v;
   v.measured = state_.count_nonpositive();
   if (best_bad_ != std::size_t(-1) && v.measured > best_bad_) {
-    if (state_.source.topology_version() != best_version_) state_.source = *best_mesh_;  // resets the properties...
-    state_.target.data() = best_target_;                                                // ...restored here
-    state_.locked.data() = best_locked_;
-    best_version_ = state_.source.topology_version();
+    restore_best();
     v.kept = best_bad_;
     v.undone = true;
     return v;

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace volmap {
 
@@ -64,89 +65,98 @@ class VolumeMapper {
   bool input_has_tet_labels_, input_has_vertex_labels_;  // label arrays stay empty when the input's were
 
   // ---- bookkeeping --------------------------------------------------------------------------
-  // Judges the stage that started at t0 (seconds into the call), records it, and names it as the
-  // certifying stage when it left no non-positive tet.
-  void judged(const std::string& name, double t0, const std::string& certifier) {
-    const double seconds = total_.elapsed() - t0;
+  // Runs one untangling stage and judges it; names it as the certifying stage when it left no
+  // non-positive tet. A stage that throws volmap::Error failed internally (the input was validated
+  // when the state was built): its partial work is undone, the reason recorded, and the cascade goes
+  // on from the best state. Before any state was judged there is nothing to go back to: it throws.
+  template <class Run>
+  void judged_stage(const std::string& name, Run&& run, const std::string& certifier) {
+    const double t0 = total_.elapsed();
+    std::string failure;
+    try {
+      run();
+    } catch (const Error& e) {
+      if (judge_.best() == std::size_t(-1)) throw;
+      failure = e.reason();
+      judge_.restore_best();
+    }
     const StageVerdict v = judge_.judge();
-    result_.stages.push_back({name, seconds, v.measured});
+    result_.stages.push_back({name, total_.elapsed() - t0, v.measured, state_.source.num_tets(), failure});
     bad_ = v.kept;
-    if (bad_ == 0 && !certifier.empty()) result_.certified_by = certifier;
+    if (bad_ == 0 && failure.empty() && !certifier.empty()) result_.certified_by = certifier;
   }
-  void judged(const std::string& name, double t0) { judged(name, t0, name); }
-  void record(const std::string& name, double t0) { result_.stages.push_back({name, total_.elapsed() - t0, 0}); }
+  template <class Run>
+  void judged_stage(const std::string& name, Run&& run) { judged_stage(name, std::forward<Run>(run), name); }
+  // A stage that changes no target (analysis, B0 splits) is only timed.
+  template <class Run>
+  void timed_stage(const std::string& name, Run&& run) {
+    const double t0 = total_.elapsed();
+    run();
+    result_.stages.push_back({name, total_.elapsed() - t0, 0, state_.source.num_tets(), ""});
+  }
   bool cascade() const { return options_.method == MapMethod::Ffm; }
   bool few_left_for_b1() const { return b1_rounds_ && bad_ <= options_.early_repair_max_bad; }
 
   // ---- §3, §4, §2: before untangling ----------------------------------------------------------
   void analyze() {
-    const double t0 = total_.elapsed();
-    result_.feasibility = analyze_feasibility(state_);
-    record("feasibility", t0);
+    timed_stage("feasibility", [&] { result_.feasibility = analyze_feasibility(state_); });
   }
 
   void split_blocking_chords_stage() {
     const FeasibilityReport& f = result_.feasibility;
     if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty()) return;
-    const double t0 = total_.elapsed();
-    const ChordSplitResult cs = split_blocking_chords(state_, f);
+    ChordSplitResult cs;
+    timed_stage("chord-split", [&] { cs = split_blocking_chords(state_, f); });
     result_.chord_edges_split = cs.edges_split;
     result_.chord_faces_split = cs.faces_split;
     result_.refined = cs.vertices_added > 0;
-    record("chord-split", t0);
   }
 
   // Tutte 3D, or the given initial map (chord-split vertices placed by a local Laplacian).
   void start_map() {
-    const double t0 = total_.elapsed();
     const bool initial = !options_.initial_xyz.empty();
-    if (initial)
-      place_new_vertices_by_laplacian(state_, state_.input_vertices);
-    else
-      place_by_tutte(state_);
-    judged(initial ? "initial" : "tutte3d", t0);
+    judged_stage(initial ? "initial" : "tutte3d", [&] {
+      if (initial)
+        place_new_vertices_by_laplacian(state_, state_.input_vertices);
+      else
+        place_by_tutte(state_);
+    });
   }
 
   // ---- stages used by several phases ----------------------------------------------------------
   void link_kernel() {
     if (bad_ == 0 || !cascade() || budget_->expired()) return;
-    const double t0 = total_.elapsed();
-    run_link_kernel(state_, 50);
-    judged("link-kernel", t0);
+    judged_stage("link-kernel", [&] { run_link_kernel(state_, 50); });
   }
 
   // Local FFM (Newton) on the region of the remaining non-positive tets, the rest frozen.
   void local_ffm(double share) {
     if (bad_ == 0 || !cascade() || !options_.local_untangle || budget_->expired()) return;
-    const double t0 = total_.elapsed();
     LocalUntangleOptions lo;
     lo.time_limit_seconds = budget_->option_seconds(share);
-    run_local_ffm(state_, lo);
-    judged("ffm-local", t0);
+    judged_stage("ffm-local", [&] { run_local_ffm(state_, lo); });
   }
 
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, then link-kernel relocation.
   void small_lift_tlc(const std::string& name, double share) {
-    const double t0 = total_.elapsed();
     TlcOptions to;
     to.alpha_ratio = 1e-8;
     to.time_limit_seconds = budget_->option_seconds(share);
-    run_tlc(state_, to);
-    judged(name, t0);
+    judged_stage(name, [&] { run_tlc(state_, to); });
     link_kernel();
   }
 
   // B1 cone repair of every cluster, within what is left of the growth budget and half the time left.
   ConeRepairResult cone_repair_stage(const std::string& name) {
-    const double t0 = total_.elapsed();
     ConeRepairOptions co;
     const long long used = (long long)state_.source.num_tets() - (long long)state_.input_tets;
     co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget_ - used));
     co.time_limit_seconds = budget_->option_seconds(0.5);
-    const ConeRepairResult cr = run_cone_repair(state_, co);
+    ConeRepairResult cr;
+    judged_stage(name, [&] { cr = run_cone_repair(state_, co); }, "cone-repair");
+    if (!result_.stages.back().failure.empty()) cr = ConeRepairResult{};  // undone
     result_.cone_patches += cr.patches;
     if (cr.patches > 0) result_.refined = true;
-    judged(name, t0, "cone-repair");
     return cr;
   }
 
@@ -159,9 +169,7 @@ class VolumeMapper {
   }
 
   void global_ffm_stage(const std::string& name, FfmOptions fo) {
-    const double t0 = total_.elapsed();
-    run_ffm(state_, fo);
-    judged(name, t0);
+    judged_stage(name, [&] { run_ffm(state_, fo); });
     link_kernel();
   }
 
@@ -169,11 +177,9 @@ class VolumeMapper {
   // §6 TLC (the whole method with MapMethod::Tlc), then in the cascade the link kernel, a
   // small-lift TLC round and local FFM, each followed by an early B1 attempt.
   void untangle_from_tlc() {
-    const double t0 = total_.elapsed();
     TlcOptions to;
     to.time_limit_seconds = budget_->option_seconds(cascade() ? options_.tlc_time_share : 1.0);
-    run_tlc(state_, to);
-    judged("tlc", t0);
+    judged_stage("tlc", [&] { run_tlc(state_, to); });
     link_kernel();
     try_early_b1("tlc");
     if (bad_ > 0 && cascade() && !budget_->expired()) {
@@ -238,11 +244,9 @@ class VolumeMapper {
   // Quality pass (never breaks validity: kept only when the exact check passes). Not after
   // MapMethod::Tlc: the baseline reproduces the published method alone.
   void quality() {
-    const double t0 = total_.elapsed();
-    double seconds = std::max(options_.quality_min_seconds, options_.quality_time_ratio * t0);
+    double seconds = std::max(options_.quality_min_seconds, options_.quality_time_ratio * total_.elapsed());
     if (budget_->limited()) seconds = std::min(seconds, budget_->remaining());
-    run_quality_pass(state_, ReferenceShape::RestShape, options_.quality_iterations, seconds);
-    judged("quality", t0, "");
+    judged_stage("quality", [&] { run_quality_pass(state_, ReferenceShape::RestShape, options_.quality_iterations, seconds); }, "");
   }
 
   // ---- the result -----------------------------------------------------------------------------
@@ -283,8 +287,13 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(options.max_threads));
   if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
     throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
-  VolumeMapper mapper(input, map, options);
-  return mapper.run();
+  VolumeMapper mapper(input, map, options);  // validates the input (Error(BadInput))
+  try {
+    return mapper.run();
+  } catch (const Error& e) {  // the input was valid: whatever fails now is the mapper's own failure
+    if (e.kind() != ErrorKind::BadInput) throw;
+    throw Error(ErrorKind::Failed, "", 0, "internal: " + e.reason());
+  }
 }
 
 }  // namespace volmap

@@ -29,7 +29,9 @@ namespace volmap {
 
 enum class ReferenceShape {
   RegularTet,  // regular tet of volume vol(D)/T for every element (isotropic, "Tutte form")
-  RestShape    // the source tet, scaled so that Σ vol_src = vol(D)
+  RestShape    // the source tet, scaled so that Σ vol_src = vol(D); a tet too flat to invert in double
+               // precision (exactly positive slivers the mapper's refinement may create) takes the
+               // regular reference instead, so every valid source mesh is a usable rest shape
 };
 
 enum class FfmSolver {
@@ -138,6 +140,8 @@ class FfmEnergy {
   // E_ε(vars) and its Hessian as a dense symmetric num_variables² matrix (row-major), either exact
   // or with every per-tet term SPD-projected (as Newton uses it). For tests of small problems only.
   double evaluate_dense_hessian(const double* vars, double epsilon, bool spd_projection, double* hessian) const;
+  // How many source tets took the regular reference because their rest shape was unusable (RestShape).
+  std::size_t unusable_rest_shapes() const;
   // Minimum D over tets for vars (scaled frame), computed in double.
   double min_det(const double* vars) const;
   // Writes vars back to unscaled coordinates of the free vertices of target_xyz.

@@ -9,7 +9,7 @@
 // never change (edits delete no vertex; new ones are appended).
 // StageJudge: after a stage, the exact number of non-positive target tets; a stage that makes it
 // worse than the best state so far is undone (mesh, target and locked restored), otherwise the
-// current state becomes the best one.
+// current state becomes the best one. A stage that throws is undone the same way (restore_best).
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
@@ -60,6 +60,9 @@ class StageJudge {
   ~StageJudge();
   // Judges the state as the last stage left it (see the file comment).
   StageVerdict judge();
+  // Restores the best state unconditionally (a stage that threw may have left a partial edit).
+  // Before the first judge() there is nothing to restore: throws Error(Failed).
+  void restore_best();
   // The count of the best state so far (SIZE_MAX before the first judge()).
   std::size_t best() const { return best_bad_; }
 

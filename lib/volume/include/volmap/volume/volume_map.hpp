@@ -65,6 +65,8 @@ struct VolumeMapStage {
   std::string name;
   double seconds = 0;
   std::size_t nonpositive_after = 0;  // exact count after the stage
+  std::size_t tets_after = 0;         // source tets after the stage (growth per stage)
+  std::string failure;                // non-empty when the stage threw: its work was undone
 };
 
 struct VolumeMapResult {
