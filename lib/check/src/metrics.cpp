@@ -16,6 +16,7 @@
 //    the JacobiSVD singular values (a closed-form eigen-solve of JᵀJ loses s3 on flat tets).
 // Per-tet values are computed in parallel (TBB) and reduced serially in tet order, as VOLMAP sums.
 #include <volmap/core/error.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
 #include <volmap/predicates.hpp>
@@ -25,7 +26,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -284,7 +284,7 @@ double tet_scaled_jacobian_volmap(const double* p0, const double* p1, const doub
 }
 
 MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, const MetricsOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const TimeBudget clock;  // a stopwatch (no limit)
   if (!(options.upper >= 6.0) || !std::isfinite(options.upper)) {
     throw_bad_input("", 0, "upper bound must be a finite number >= 6 (the largest lower clamp)");
   }
@@ -456,7 +456,7 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
       for (int k = 0; k < 3; ++k) p.singular_values[3 * t + k] = f[2 * kNumEnergies + 3 + k];
     }
   }
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.seconds = clock.elapsed();
   return report;
 }
 
