@@ -39,9 +39,8 @@ int main(int argc, char** argv) {
     volmap::SurfaceMapCheckOptions opt;
     opt.position_tolerance = tolerance;
     opt.accept_either_sign = either_sign;
-    if (sphere) {  // the sphere of volmap-surface-map: centre (50,50,50) is the kernel, radius 50
-      opt.override_kernel = true;
-      opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+    if (sphere) {  // the sphere of volmap-surface-map (centre (50,50,50), radius 50); kernel = centroid
+      opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
       opt.sphere_radius = volmap::kSphereRadius;
     }
     const auto r = volmap_tools::naming_file(

@@ -60,9 +60,8 @@ int main(int argc, char** argv) {
       try {
         const volmap::BoundaryMap written = volmap::read_boundary_map(tmp);
         volmap::SurfaceMapCheckOptions opt;
-        if (sphere) {
-          opt.override_kernel = true;
-          opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+        if (sphere) {  // the same criterion as volmap-surface-map-check --domain sphere
+          opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
           opt.sphere_radius = volmap::kSphereRadius;
         }
         c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
@@ -107,6 +106,8 @@ int main(int argc, char** argv) {
                        {"boundary_vertices", r.map.size()},
                        {"node_vertices", r.node_vertices},
                        {"collided_nodes", r.collided_nodes},
+                       {"attempt", r.attempt},
+                       {"failed_attempts", r.failed_attempts},
                        {"check_positive", r.check.positive},
                        {"check_triangles", r.check.boundary_triangles},
                        {"precision", volmap_precision ? "volmap6" : "full"},
