@@ -841,12 +841,12 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& loc
     if (v >= nv) throw Error(ErrorKind::BadInput, "", 0, "cone_repair: tet vertex id out of range");
   TetMesh mesh(source);
   PositionProperty target(mesh);
-  VertexProperty<std::uint8_t> lock(mesh);
+  VertexProperty<std::uint8_t> locked_property(mesh);
   for (std::size_t v = 0; v < nv; ++v) {
     for (int i = 0; i < 3; ++i) target.data()[v][i] = target_xyz[3 * v + i];
-    lock.data()[v] = locked[v];
+    locked_property.data()[v] = locked[v];
   }
-  const ConeRepairResult res = cone_repair(mesh, target, lock, options);
+  const ConeRepairResult res = cone_repair(mesh, target, locked_property, options);
   if (res.patches == 0) return res;  // nothing changed: the arrays stay as given
   mesh.compact();  // keeps the original vertex ids: patches delete no vertex
   const bool had_tet_labels = !source.tet_labels.empty(), had_vertex_labels = !source.vertex_labels.empty();
@@ -857,7 +857,7 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& loc
   locked.resize(source.num_vertices());
   for (std::size_t v = 0; v < source.num_vertices(); ++v) {
     for (int i = 0; i < 3; ++i) target_xyz[3 * v + i] = target.data()[v][i];
-    locked[v] = lock.data()[v];
+    locked[v] = locked_property.data()[v];
   }
   return res;
 }

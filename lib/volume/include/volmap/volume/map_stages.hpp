@@ -1,8 +1,9 @@
 // volmap/volume/map_stages.hpp — the stages of the volume mapper, each one algorithm run on the
 // MapState (docs/mapping.md §8). A stage reads the source mesh, the target and the locked mask from
 // the state and writes the target back; the refining stages (chord splitting, cone repair) edit the
-// mesh and compact it, so every stage starts on a mesh without tombstones. Stages never judge their
-// result: compute_volume_map does that with one StageJudge. Locked vertices are never moved.
+// mesh and leave no tombstone (B0's splits on a compact mesh make none, cone repair compacts), so
+// every stage starts on a compact mesh. Stages never judge their result: compute_volume_map does
+// that with one StageJudge. Locked vertices are never moved.
 #pragma once
 
 #include <volmap/volume/chord_split.hpp>
@@ -30,7 +31,7 @@ RelocationResult run_link_kernel(MapState& state, int max_sweeps);
 FfmResult run_ffm(MapState& state, const FfmOptions& options);
 LocalUntangleResult run_local_ffm(MapState& state, const LocalUntangleOptions& options);
 QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds);
-// §7 B1 cone repair; the mesh is compacted afterwards.
+// §7 B1 cone repair; the mesh is compacted afterwards when a patch freed slots.
 ConeRepairResult run_cone_repair(MapState& state, const ConeRepairOptions& options);
 
 }  // namespace volmap
