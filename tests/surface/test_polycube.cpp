@@ -14,6 +14,8 @@
 #include <volmap/testing/generate.hpp>
 #include <volmap/volume/volume_map.hpp>
 
+#include "surface_map_test_util.hpp"
+
 #include <algorithm>
 #include <map>
 #include <random>
@@ -57,13 +59,7 @@ bool strictly_sees_all_faces(const std::set<PolycubeCell>& cells, const std::arr
 // Maps `mesh` onto `d`, re-checks the surface map exactly and certifies the volume map.
 void map_and_certify(const TetMeshData& mesh, const Domain& d, const std::string& what) {
   CAPTURE(what);
-  SurfaceMapResult r;
-  REQUIRE_NOTHROW(r = map_surface_to_domain(mesh, d));
-  const auto c = check_surface_map(r.mesh, r.map, &d);
-  CHECK(c.ok);
-  CHECK(c.positive == c.boundary_triangles);
-  CHECK(c.corners_exact == d.num_nodes());
-  CHECK(c.kernel == d.kernel);
+  const SurfaceMapResult r = volmap_test::map_and_recheck(mesh, d);
   VolumeMapOptions opt;
   opt.time_limit_seconds = 60;
   const auto v = compute_volume_map(r.mesh, r.map, opt);
