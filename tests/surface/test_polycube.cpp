@@ -220,7 +220,7 @@ TEST_CASE("the kernel decision agrees with a brute-force search on random unions
   CHECK(refused > 20);
 }
 
-TEST_CASE("generated meshes map onto cross7 and L3; the volume maps are certified") {
+TEST_CASE("generated meshes map onto cross7 and L3 and their volume maps are certified") {
   // An L-shaped grid (3 grid steps per cell) and plain cubes.
   map_and_certify(generate_kuhn_unit_cube(8), polycube_domain("cross7"), "8x8x8 cube onto cross7");
   const TetMeshData l = generate_kuhn_grid(6, 6, 3, [](std::size_t i, std::size_t j, std::size_t) { return i < 3 || j < 3; });
