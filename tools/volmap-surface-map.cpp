@@ -1,5 +1,7 @@
-// volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom> <in.mesh> <out_map.txt> [--domain file]
+// volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom|polycube> <in.mesh> <out_map.txt>
+//                    [--domain file] [--cells <cells file|cross7|L3>] [--cell-size S]
 //                    [--refined out.mesh] [--volmap-precision] [--json]
+// `polycube:<cells>` is the same as `polycube --cells <cells>` (<volmap/surface/polycube.hpp>).
 // Maps the boundary of a genus-0 tet mesh onto a base domain (see <volmap/surface_map.hpp>), checks
 // the map exactly and only then writes it (%.17g, sorted by vid) and, when edges were split, the
 // refined tet mesh the map refers to (default name: <out_map without extension>_in.mesh).
@@ -11,6 +13,7 @@
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/surface_map.hpp>
 
@@ -22,12 +25,18 @@ int main(int argc, char** argv) {
   CLI::App app{"Map the boundary of a tet mesh onto a base domain; the map is verified exactly before it "
                "is written.",
                "volmap-surface-map"};
-  std::string domain_name, mesh_path, map_path, domain_file, refined_path;
+  std::string domain_name, mesh_path, map_path, domain_file, refined_path, cells;
+  double cell_size = volmap::kDefaultPolycubeCellSize;
   bool json = false, volmap_precision = false;
-  app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
+  app.add_option("domain", domain_name,
+                 "cube, tet, pyr, octa, star, sphere, custom (with --domain) or polycube (with --cells; or "
+                 "polycube:<cells>)")
+      ->required();
   app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
+  app.add_option("--cells", cells, "polycube cells: a file of 'i j k' lines, or cross7 / L3");
+  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)");
   app.add_option("--refined", refined_path, "where to write the refined tet mesh when edges are split");
   app.add_flag("--volmap-precision", volmap_precision,
                "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
@@ -36,7 +45,18 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const bool sphere = domain_name == "sphere" || domain_name == "SPHERE";
     volmap::Domain domain;
-    if (domain_name == "custom" || domain_name == "CUSTOM") {
+    if (domain_name.rfind(volmap::kPolycubePrefix, 0) == 0) {
+      if (!cells.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "give the polycube cells once");
+      cells = domain_name.substr(volmap::kPolycubePrefix.size());
+      domain_name = "polycube";
+    }
+    if (!cells.empty() && domain_name != "polycube")
+      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "--cells is for the polycube domain");
+    if (domain_name == "polycube") {
+      if (cells.empty())
+        throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "polycube domain needs --cells <file|cross7|L3>");
+      domain = volmap::polycube_domain(cells, cell_size);
+    } else if (domain_name == "custom" || domain_name == "CUSTOM") {
       if (domain_file.empty())
         throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "custom domain needs --domain <file>");
       domain = volmap::read_custom_domain(domain_file);

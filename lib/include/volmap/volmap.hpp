@@ -36,6 +36,7 @@
 #include <volmap/surface/boundary_surface.hpp>
 #include <volmap/surface/domain.hpp>
 #include <volmap/surface/map_extension.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/surface/surface_map.hpp>
 #include <volmap/surface/surface_map_check.hpp>
 
