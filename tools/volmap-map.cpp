@@ -16,6 +16,9 @@
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
 // Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
 // Certification re-reads the written files and runs the exact check on exactly those numbers.
+// When no map can exist, `infeasible` (JSON) says so: scope "any-refinement" (the boundary image
+// encloses a non-positive volume) or "this-connectivity" with the exact local certificates of
+// volmap/volume/infeasibility.hpp (kind, simplex, constraint tets, multipliers); exit 1 then.
 // Exit: 0 certified; 1 ran but not injective (out.mesh is STILL written with the best map found, so
 // it can be inspected; it must not be used as a valid map); 2 usage or bad input.
 #include "support/tool_common.hpp"
@@ -145,7 +148,20 @@ int main(int argc, char** argv) {
                        {"seconds", r.seconds},
                        {"stages", stages}};
       if (r.feasibility.infeasible_with_any_refinement())
-        j["infeasible"] = "the boundary map encloses a non-positive volume: no injective map exists at any refinement";
+        j["infeasible"] = {{"scope", "any-refinement"},
+                           {"reason", "the boundary map encloses a non-positive volume: no injective map exists at any refinement"}};
+      else if (!r.refined && !r.infeasibility.empty()) {
+        nlohmann::json certificates = nlohmann::json::array();
+        for (const auto& c : r.infeasibility) {
+          std::vector<std::string> multipliers;
+          for (const auto& m : c.multipliers) multipliers.push_back(m.str());
+          certificates.push_back({{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
+                                  {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}});
+        }
+        j["infeasible"] = {{"scope", "this-connectivity"},
+                           {"reason", "exact local certificate: no map with every tet positive exists at the input connectivity"},
+                           {"certificates", certificates}};
+      }
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s: %s (%zu tets, %zu non-positive, growth %.4f, %s, %.2f s)\n", out_path.c_str(),
@@ -153,6 +169,10 @@ int main(int argc, char** argv) {
                   r.growth(), certified ? r.certified_by.c_str() : "-", r.seconds);
       if (r.feasibility.infeasible_with_any_refinement())
         std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
+      else if (!r.refined && !r.infeasibility.empty()) {
+        std::printf("  infeasible at the input connectivity (exact local certificates):\n");
+        for (const auto& c : r.infeasibility) std::printf("    %s\n", volmap::describe(c).c_str());
+      }
       else if (!certified && refined_path.empty() && !no_refine)
         std::printf("  refinement was off: give --refined-input <path> to allow chord splits and cone repair\n");
       for (const auto& s : r.stages) std::printf("  %-18s %8.3f s  non-positive after: %zu\n", s.name.c_str(), s.seconds, s.nonpositive_after);

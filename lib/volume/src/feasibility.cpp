@@ -2,6 +2,8 @@
 // its half-face structure; lists sorted by vertex ids).
 #include <volmap/volume/feasibility.hpp>
 
+#include "collinear.hpp"
+
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 
@@ -11,14 +13,6 @@
 namespace volmap {
 
 namespace {
-
-bool collinear_exact(const double* a, const double* b, const double* c) {
-  // Collinear in 3D iff all three coordinate-plane projections are collinear (exact orient2d).
-  const double a_xy[2] = {a[0], a[1]}, b_xy[2] = {b[0], b[1]}, c_xy[2] = {c[0], c[1]};
-  const double a_yz[2] = {a[1], a[2]}, b_yz[2] = {b[1], b[2]}, c_yz[2] = {c[1], c[2]};
-  const double a_zx[2] = {a[2], a[0]}, b_zx[2] = {b[2], b[0]}, c_zx[2] = {c[2], c[0]};
-  return orient2d(a_xy, b_xy, c_xy) == 0 && orient2d(a_yz, b_yz, c_yz) == 0 && orient2d(a_zx, b_zx, c_zx) == 0;
-}
 
 // Exact sign of 6 × the volume enclosed by the image of the outward boundary triangles:
 // Σ det[a; b; c] (the divergence theorem with the origin as apex; orient3d(a,b,c,d) > 0 for an

@@ -28,6 +28,11 @@ FeasibilityReport analyze_feasibility(const MapState& s) {
   return analyze_feasibility(s.source, s.locked.data(), s.target_xyz());
 }
 
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& s) {
+  s.require_compact();
+  return find_local_infeasibility(s.source, s.locked.data(), s.target_xyz());
+}
+
 ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& report) {
   s.require_compact();
   return split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);  // splits leave no tombstone

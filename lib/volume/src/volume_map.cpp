@@ -41,6 +41,8 @@ class VolumeMapper {
       result_.certified_by.clear();
       return finish(false);
     }
+    // An exact local certificate at fixed connectivity (§9): no untangler can succeed.
+    if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
     if (bad_ > 0 && options_.method == MapMethod::Ffm && !few_left_for_b1()) global_ffm();
     if (bad_ > 0 && b1_rounds_) repair_rounds();
@@ -82,6 +84,7 @@ class VolumeMapper {
   void analyze() {
     const double t0 = total_.elapsed();
     result_.feasibility = analyze_feasibility(state_);
+    result_.infeasibility = find_local_infeasibility(state_);
     record("feasibility", t0);
   }
 

@@ -9,6 +9,7 @@
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/infeasibility.hpp>
 #include <volmap/volume/link_kernel.hpp>
 #include <volmap/volume/map_state.hpp>
 #include <volmap/volume/tlc.hpp>
@@ -17,6 +18,8 @@ namespace volmap {
 
 // §3 on the current state (only the locked targets are read).
 FeasibilityReport analyze_feasibility(const MapState& state);
+// §9 exact local infeasibility certificates of the current state (only the locked targets are read).
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& state);
 // §4 B0: splits the blocking chords of `report`; new vertices are unlocked, their target unset.
 ChordSplitResult split_blocking_chords(MapState& state, const FeasibilityReport& report);
 // §2: every unlocked vertex at the uniform-Laplacian (Tutte) solution for the locked ones.

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/infeasibility.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
@@ -78,6 +79,10 @@ struct VolumeMapResult {
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
+  // Exact local certificates that no strictly positive map exists at the input connectivity
+  // (infeasibility.hpp, each verified). Without refinement a non-empty list ends the run before
+  // any untangler (the result is then not certified, and nothing else could be).
+  std::vector<InfeasibilityCertificate> infeasibility;
   std::vector<VolumeMapStage> stages;
   double seconds = 0;
   double growth() const { return input_tets ? double(source.num_tets()) / double(input_tets) - 1.0 : 0.0; }
