@@ -1,7 +1,7 @@
 // volmap-map — certified robust volume mapper (docs/mapping.md; issue 6), candidate-method contract:
 //   volmap-map <in.mesh> <map.txt> <out.mesh> [--method ffm|tlc] [--refined-input path]
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
-//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local]   (cascade tuning, see volume_map.hpp)
+//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local] [--no-kernel-descent]   (cascade tuning, see volume_map.hpp)
 //              [--initial init.(mesh|vtk|vtu)]
 // in.mesh may also be .vtk/.vtu (VOLMAP-positive tets). --initial starts from a given (possibly tangled)
 // map instead of Tutte 3D: same vertex count and the same tets in the same order as the input, boundary
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false, no_local = false;
+  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
   app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("--ffm-inner", ffm_inner, "cascade: L-BFGS iterations per FFM outer step (0 = default)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
+  app.add_flag("--no-kernel-descent", no_kernel_descent, "cascade: skip the kernel-descent stages (exact single-vertex moves driven by the bad tets)");
   app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;
     opt.local_untangle = !no_local;
+    opt.kernel_descent = !no_kernel_descent;
     const volmap::VolumeMapResult r = volmap::compute_volume_map(input, map, opt);
 
     volmap::TetMeshData out = r.source;

@@ -1,4 +1,4 @@
-// Exact local infeasibility certificates (infeasibility.hpp, mapping.md §9): constructed impossible
+// Exact local infeasibility certificates (infeasibility.hpp, mapping.md §10): constructed impossible
 // cases give a certificate that an independent exact oracle (rationals computed here) confirms;
 // feasible cases, shown feasible by an exactly checked witness point, never get one.
 #include <doctest/doctest.h>

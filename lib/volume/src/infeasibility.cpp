@@ -1,4 +1,4 @@
-// infeasibility.cpp — exact local infeasibility certificates (docs/mapping.md §9; conventions in
+// infeasibility.cpp — exact local infeasibility certificates (docs/mapping.md §10; conventions in
 // infeasibility.hpp). The search may use doubles (the kernel LP, to pick the constraints); every
 // certificate it returns has passed verify_certificate, which decides with exact predicates and
 // exact rationals only.

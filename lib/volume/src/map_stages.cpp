@@ -63,6 +63,10 @@ RelocationResult run_link_kernel(MapState& s, int max_sweeps) {
   return on_flat_target(s, [&](std::vector<double>& x) { return relocate_into_link_kernels(s.source, s.locked.data(), x, max_sweeps); });
 }
 
+KernelDescentResult run_kernel_descent(MapState& s) {
+  return on_flat_target(s, [&](std::vector<double>& x) { return descend_into_link_kernels(s.source, s.locked.data(), x); });
+}
+
 FfmResult run_ffm(MapState& s, const FfmOptions& options) {
   return on_flat_target(s, [&](std::vector<double>& x) {
     return ffm_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);

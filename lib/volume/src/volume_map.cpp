@@ -41,7 +41,7 @@ class VolumeMapper {
       result_.certified_by.clear();
       return finish(false);
     }
-    // An exact local certificate at fixed connectivity (§9): no untangler can succeed.
+    // An exact local certificate at fixed connectivity (§10): no untangler can succeed.
     if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
     if (bad_ > 0 && options_.method == MapMethod::Ffm && !few_left_for_b1()) global_ffm();
@@ -116,6 +116,14 @@ class VolumeMapper {
     const double t0 = total_.elapsed();
     run_link_kernel(state_, 50);
     judged("link-kernel", t0);
+    kernel_descent();
+  }
+
+  void kernel_descent() {
+    if (bad_ == 0 || !cascade() || !options_.kernel_descent || budget_->expired()) return;
+    const double t0 = total_.elapsed();
+    run_kernel_descent(state_);
+    judged("kernel-descent", t0);
   }
 
   // Local FFM (Newton) on the region of the remaining non-positive tets, the rest frozen.
@@ -126,6 +134,7 @@ class VolumeMapper {
     lo.time_limit_seconds = budget_->option_seconds(share);
     run_local_ffm(state_, lo);
     judged("ffm-local", t0);
+    kernel_descent();
   }
 
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, then link-kernel relocation.

@@ -1,5 +1,5 @@
 // volmap/volume/infeasibility.hpp — exact local proofs that no map with every tet strictly positive
-// exists at the given connectivity (docs/mapping.md §9).
+// exists at the given connectivity (docs/mapping.md §10).
 // Conventions: the source as a TetMesh without tombstones, VOLMAP-positive tets, `locked[v]` != 0
 // for the vertices whose image is fixed (the boundary), `target_xyz` = 3 doubles per vertex of which
 // only the locked entries are read. A certificate names the simplex and the constraints that cannot

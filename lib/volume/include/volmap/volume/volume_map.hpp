@@ -56,6 +56,9 @@ struct VolumeMapOptions {
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
   // run after each global untangling stage that stops short of certification (cascade only).
   bool local_untangle = true;
+  // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
+  // (cascade only).
+  bool kernel_descent = true;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
