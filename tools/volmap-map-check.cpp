@@ -7,10 +7,12 @@
 // additionally every input tet is positive and (with --boundary) every boundary vertex sits exactly
 // on the map's position. With rationals files the check runs on exact rational coordinates; a missing
 // side is converted exactly from the mesh's doubles. Exit 0 certified, 1 not, 2 bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io.hpp>
 #include <volmap/check/map_check.hpp>
+#include <volmap/check/orientation.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -32,8 +34,8 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, boundary_path, rat_in_path, rat_out_path;
   bool absolute = false, json = false;
   std::size_t max_bad = 20;
-  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk or .vtu by extension)")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk or .vtu)")->required();
+  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk, .vtu, .msh or .ovm by extension)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu or .msh)")->required();
   app.add_option("--boundary", boundary_path, "boundary map: boundary vertices must sit exactly on it");
   app.add_option("--rationals-in", rat_in_path, "exact input coordinates (VOLMAP num/den file)");
   app.add_option("--rationals-out", rat_out_path, "exact output coordinates (VOLMAP num/den file)");
@@ -43,8 +45,9 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    const volmap::TetMeshData in = volmap::read_tet_mesh(in_path);
-    const volmap::TetMeshData out = volmap::read_tet_mesh(out_path);
+    volmap_tools::InputMeshes inputs("volmap-map-check", &json);
+    const volmap::TetMeshData in = inputs.read(in_path);
+    const volmap::TetMeshData out = inputs.read(out_path);
     volmap::BoundaryMap map;
     if (!boundary_path.empty()) {
       map = volmap::read_boundary_map(boundary_path);
@@ -92,6 +95,8 @@ int main(int argc, char** argv) {
       j["num_bad"] = r.num_bad;
       j["first_bad_tets"] = r.first_bad;
       j["input_all_positive"] = r.input_all_positive();
+      j["input_orientation"] = volmap::describe_orientation(r.input);
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.boundary_checked) {
         j["boundary_mismatches"] = r.boundary_mismatches;
         j["first_boundary_mismatches"] = r.first_boundary_mismatches;
@@ -119,8 +124,8 @@ int main(int argc, char** argv) {
         std::printf("boundary: %zu vertices off their prescribed position\n", r.boundary_mismatches);
       }
       if (!r.input_all_positive()) {
-        std::printf("note: the input has %zu non-positive tets, so no map from it can be certified\n",
-                    r.num_tets - r.input.positive);
+        std::printf("note: the input is not VOLMAP-positive, so no map from it can be certified: %s\n",
+                    volmap::describe_orientation(r.input).c_str());
       }
       if (certified) {
         std::printf("The map is valid (certified, %s check)\n", rational ? "rationals" : "floating point");

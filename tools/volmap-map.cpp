@@ -3,7 +3,9 @@
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
 //              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local] [--no-kernel-descent]   (cascade tuning, see volume_map.hpp)
 //              [--initial init.(mesh|vtk|vtu)]
-// in.mesh may also be .vtk/.vtu (VOLMAP-positive tets). --initial starts from a given (possibly tangled)
+// in.mesh may also be .vtk/.vtu/.msh/.ovm; its tets must be VOLMAP-positive (an input in the opposite
+// convention, as Gmsh and OpenVolumeMesh files are, is refused with exit 2 and the sentence of
+// describe_orientation: flip it first with volmap-tetmesh-check --fix). --initial starts from a given (possibly tangled)
 // map instead of Tutte 3D: same vertex count and the same tets in the same order as the input, boundary
 // vertices bit-identical to the prescribed map (else exit 2). A map positional of `-` takes the boundary
 // map from the initial file's boundary vertices (requires --initial).
@@ -21,11 +23,13 @@
 // volmap/volume/infeasibility.hpp (kind, simplex, constraint tets, multipliers); exit 1 then.
 // Exit: 0 certified; 1 ran but not injective (out.mesh is STILL written with the best map found, so
 // it can be inspected; it must not be used as a valid map); 2 usage or bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
+#include <volmap/check/orientation.hpp>
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 #include <volmap/volume/volume_map.hpp>
 
 #include <cstdio>
@@ -38,7 +42,7 @@ int main(int argc, char** argv) {
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
   bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
-  app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
+  app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
   app.add_option("--method", method, "ffm (default: Tutte → FFM → repair) or tlc (Du et al. 2020 baseline)")
@@ -60,12 +64,18 @@ int main(int argc, char** argv) {
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
-    const volmap::TetMeshData input = volmap::read_tet_mesh(in_path);
+    volmap_tools::InputMeshes inputs("volmap-map", &json);
+    const volmap::TetMeshData input = inputs.read(in_path);
+    const volmap::TetSignCounts input_signs =
+        volmap::orient3d_tets(input.xyz.data(), input.num_vertices(), input.tets.data(), input.num_tets(), nullptr);
+    if (input_signs.ok && (input_signs.negative > 0 || input_signs.zero > 0))
+      throw volmap::Error(volmap::ErrorKind::BadInput, in_path, 0,
+                          "the source mesh must be VOLMAP-positive: " + volmap::describe_orientation(input_signs));
     for (const std::string* output : {&out_path, &refined_path, &rationals_path})  // before the long run
       if (!output->empty()) volmap_tools::require_output_folder(*output);
     volmap::VolumeMapOptions opt;
     if (!initial_path.empty()) {
-      const volmap::TetMeshData initial = volmap::read_tet_mesh(initial_path);
+      const volmap::TetMeshData initial = inputs.read(initial_path);
       if (initial.num_vertices() != input.num_vertices() || initial.tets != input.tets)
         throw volmap::Error(volmap::ErrorKind::BadInput, initial_path, 0,
                             "the initial map must have the input's vertices and the same tets in the same order (" +
@@ -149,6 +159,7 @@ int main(int argc, char** argv) {
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.feasibility.infeasible_with_any_refinement())
         j["infeasible"] = {{"scope", "any-refinement"},
                            {"reason", "the boundary map encloses a non-positive volume: no injective map exists at any refinement"}};

@@ -10,6 +10,7 @@
 // Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
 // Exit 0 when computed (also for maps with inverted tets: this tool measures, it does not certify),
 // 2 on bad or mismatched input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -36,8 +37,8 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, csv_path, vtu_path, original_path;
   double upper = 100.0;
   bool json = false, emulate_singular = false;
-  app.add_option("in.mesh", in_path, "source tet mesh (VOLMAP-positive)")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets)")->required();
+  app.add_option("in.mesh", in_path, "source tet mesh (VOLMAP-positive; .mesh, .vtk, .vtu, .msh or .ovm)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu or .msh)")->required();
   app.add_option("--upper", upper, "energy clamp upper bound (default 100)");
   app.add_flag("--json", json, "print one JSON object");
   app.add_option("--csv", csv_path, "append VOLMAP's CSV line to this file");
@@ -52,8 +53,9 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    const volmap::TetMeshData in = volmap::read_medit(in_path);
-    const volmap::TetMeshData out = volmap::read_medit(out_path);
+    volmap_tools::InputMeshes inputs("volmap-metrics", &json);
+    const volmap::TetMeshData in = inputs.read(in_path);
+    const volmap::TetMeshData out = inputs.read(out_path);
     const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     volmap::MetricsOptions options;
     options.upper = upper;
@@ -63,7 +65,7 @@ int main(int argc, char** argv) {
                                                               [&] { return volmap::compute_metrics(in, out, options); });
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
-      const volmap::TetMeshData original = volmap::read_medit(original_path);
+      const volmap::TetMeshData original = inputs.read(original_path);
       original_tets = original.num_tets();
       original_vertices = original.num_vertices();
     }
@@ -106,6 +108,7 @@ int main(int argc, char** argv) {
     if (json) {
       nlohmann::json j;
       j["ok"] = true;
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       j["exit_code"] = 0;
       j["input"] = in_path;
       j["output"] = out_path;

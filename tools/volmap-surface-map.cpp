@@ -7,6 +7,7 @@
 // checked exactly again (same check, tolerance for 6-decimal points) and refused (exit 1, nothing
 // written) when rounding breaks it.
 // Exit 0 = map written; 1 = mapping or verification failed (nothing written); 2 = bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   std::string domain_name, mesh_path, map_path, domain_file, refined_path;
   bool json = false, volmap_precision = false;
   app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
-  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu, VOLMAP-positive)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
   app.add_option("--refined", refined_path, "where to write the refined tet mesh when edges are split");
@@ -44,7 +45,8 @@ int main(int argc, char** argv) {
     } else {
       domain = volmap::builtin_domain(domain_name);
     }
-    const volmap::TetMeshData mesh = volmap::read_tet_mesh(mesh_path);
+    volmap_tools::InputMeshes inputs("volmap-surface-map", &json);
+    const volmap::TetMeshData mesh = inputs.read(mesh_path);
     volmap::SurfaceMapResult r =
         volmap_tools::naming_file(mesh_path, [&] { return volmap::map_surface_to_domain(mesh, domain); });
     if (sphere)
@@ -58,9 +60,8 @@ int main(int argc, char** argv) {
       try {
         const volmap::BoundaryMap written = volmap::read_boundary_map(tmp);
         volmap::SurfaceMapCheckOptions opt;
-        if (sphere) {
-          opt.override_kernel = true;
-          opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+        if (sphere) {  // the same criterion as volmap-surface-map-check --domain sphere
+          opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
           opt.sphere_radius = volmap::kSphereRadius;
         }
         c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
@@ -105,10 +106,13 @@ int main(int argc, char** argv) {
                        {"boundary_vertices", r.map.size()},
                        {"node_vertices", r.node_vertices},
                        {"collided_nodes", r.collided_nodes},
+                       {"attempt", r.attempt},
+                       {"failed_attempts", r.failed_attempts},
                        {"check_positive", r.check.positive},
                        {"check_triangles", r.check.boundary_triangles},
                        {"precision", volmap_precision ? "volmap6" : "full"},
                        {"seconds", seconds}};
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       std::cout << j.dump() << "\n";
     } else {
       std::cout << "domain " << (sphere ? "sphere" : domain.name) << ": " << r.map.size() << " boundary vertices, +"

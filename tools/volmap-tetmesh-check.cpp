@@ -1,7 +1,10 @@
-// volmap-tetmesh-check <in.mesh|.vtk|.vtu> [--fix out.mesh] [--json] [--log checks.csv]
+// volmap-tetmesh-check <in.mesh|.vtk|.vtu|.msh|.ovm> [--fix out.mesh] [--json] [--log checks.csv]
 // The seven VOLMAP input checks (volmap-reference.md §8 `tetmesh_checks`, done exactly on every tet):
 // orientation, volume, genus, components, manifold, closed, self_intersections. One line per check
-// (PASSED/FAILED with figures) or, with --json, one JSON object.
+// (PASSED/FAILED with figures) or, with --json, one JSON object. The orientation line says in words
+// which convention the tets are in (describe_orientation): Gmsh and OpenVolumeMesh files, read as
+// they are, are in the opposite one. Reader notes (skipped Gmsh elements, dropped nodes) go to stderr,
+// or under "input_notes" with --json.
 // --fix out: when the mesh is coherently opposite (no tet with orient3d > 0), writes it with local
 // vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex order, tet order and
 // labels kept), re-checks the written mesh and reports it; refuses (exit 1, nothing written) when
@@ -11,6 +14,7 @@
 // --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order).
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -65,7 +69,8 @@ Json tet_report_json(const volmap::TetMeshCheckReport& r) {
                {{"class", volmap::to_string(r.orientation)},
                 {"positive", r.signs.positive},
                 {"negative", r.signs.negative},
-                {"zero", r.signs.zero}}},
+                {"zero", r.signs.zero},
+                {"summary", r.check("orientation").detail}}},
               {"checks", checks_json(r.checks)},
               {"topology",
                {{"boundary_faces", t.num_boundary_faces},
@@ -103,7 +108,7 @@ int main(int argc, char** argv) {
                "volmap-tetmesh-check"};
   std::string input, fix_output;
   bool json = false;
-  app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu) or surface (.off, .obj, .stl, .ply)")->required();
+  app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu, .msh, .ovm) or surface (.off, .obj, .stl, .ply)")->required();
   app.add_option("--fix", fix_output,
                  "write the mesh flipped to the VOLMAP convention (v0<->v1 in every tet) when it is coherently "
                  "opposite (a mesh already positive is written unchanged); refused (exit 1, nothing written) when "
@@ -146,7 +151,8 @@ int main(int argc, char** argv) {
           return ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
         }
 
-        volmap::TetMeshData mesh = volmap::read_tet_mesh(input);
+        volmap_tools::InputMeshes inputs("volmap-tetmesh-check", &json);
+        volmap::TetMeshData mesh = inputs.read(input);
         const double read_ms = ms_since(t0);
         const auto report = volmap::check_tet_mesh(mesh);
         const double check_ms = ms_since(t0) - read_ms;
@@ -154,6 +160,7 @@ int main(int argc, char** argv) {
         Json j;
         if (json) j = Json{{"input", input}, {"kind", "tet_mesh"}};
         if (json) j["report"] = tet_report_json(report);
+        if (json && !inputs.empty()) j["input_notes"] = inputs.json();
         if (!json) {
           std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
           print_checks(report.checks);
@@ -181,10 +188,7 @@ int main(int argc, char** argv) {
           fix["output"] = fix_output;
           if (report.orientation == volmap::OrientationClass::Mixed ||
               report.orientation == volmap::OrientationClass::Empty) {
-            const std::string why = report.orientation == volmap::OrientationClass::Mixed
-                                        ? "orientation is mixed (" + std::to_string(report.signs.positive) + " positive, " +
-                                              std::to_string(report.signs.negative) + " negative): a global flip cannot fix it"
-                                        : "no tet has a non-zero volume";
+            const std::string why = volmap::describe_orientation(report.signs, "--fix");
             fix["written"] = false;
             fix["reason"] = "refused: " + why;
             if (!json) std::printf("fix: refused, %s; nothing written\n", why.c_str());

@@ -1,6 +1,6 @@
-// volmap-tetrahedralize <surface.{obj,off,stl,ply}> <out.mesh> [--quality 1.414] [--max-volume V] [--json]
+// volmap-tetrahedralize <surface.{obj,off,stl,ply}> <out.mesh> [--quality 1.414 | --coarse] [--max-volume V] [--json]
 // Checks the surface (closed, manifold, one component, genus 0, no self-intersections), tetrahedralizes it with TetGen
-// (p q<quality> Y, boundary preserved) and writes a VOLMAP-positive Medit mesh.
+// (p q<quality> Y, boundary preserved; --coarse: p Y, no quality refinement) and writes a VOLMAP-positive Medit mesh.
 // Exit 0 = written; 1 = surface refused (topology) or TetGen failed (self-intersections, ...); 2 = usage/IO.
 #include "support/tool_common.hpp"
 
@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   app.add_option("out", out_path, "output Medit .mesh")->required();
   app.add_option("--quality", opt.quality, "radius-edge ratio bound (TetGen q), default 1.414");
   app.add_option("--max-volume", opt.max_volume, "maximum tet volume (TetGen a), default none");
+  app.add_flag("--coarse", opt.coarse, "no quality refinement (TetGen without q): few tets, most touching the boundary")
+      ->excludes("--quality");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 // writes the map atomically (even when it inverts tets: it is a baseline), then re-reads the written
 // file and certifies it exactly (orient3d > 0 for every tet in the input's vertex order, boundary
 // vertices bit-identical to the map). Exit 0 iff certified injective, 1 otherwise, 2 on bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io.hpp>
@@ -18,7 +19,7 @@ int main(int argc, char** argv) {
   app.name("volmap-tutte3d");
   std::string in_path, map_path, out_path, weights = "uniform";
   bool json = false;
-  app.add_option("in.mesh", in_path, "input tet mesh (Medit)")->required();
+  app.add_option("in.mesh", in_path, "input tet mesh (.mesh, .vtk, .vtu, .msh or .ovm)")->required();
   app.add_option("map.txt", map_path, "boundary map (vid x y z, 0-based)")->required();
   app.add_option("out.mesh", out_path, "output map (Medit, same vertices and tets)")->required();
   app.add_option("--weights", weights, "Laplacian weights (only 'uniform')")->check(CLI::IsMember({"uniform"}));
@@ -26,7 +27,8 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    const volmap::TetMeshData mesh = volmap::read_medit(in_path);
+    volmap_tools::InputMeshes inputs("volmap-tutte3d", &json);
+    const volmap::TetMeshData mesh = inputs.read(in_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::validate_boundary_map(map, mesh, map_path);
     const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
     if (json) {
       nlohmann::json j;
       j["ok"] = true;
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       j["injective"] = injective;
       j["exit_code"] = injective ? 0 : 1;
       j["input"] = in_path;

@@ -2,9 +2,9 @@
 // cavity boundary face stays strictly visible from the star's centre, so the cavity is star-shaped
 // and a ball) replaced by the cones from an interior point — with a new apex (the cavity's interior
 // vertices deleted) or with the centre vertex kept as apex. Oracles: check_invariants with exact
-// positivity, the oriented mesh boundary unchanged (brute-force face map), counts, slot reuse,
-// labels and properties from the named parents; fills that do not close onto the cavity are refused
-// with the mesh bit-identical.
+// positivity, the adjacency equal to a from-scratch rebuild, the oriented mesh boundary unchanged
+// (brute-force face map), counts, slot reuse, labels and properties from the named parents; fills
+// that do not close onto the cavity are refused with the mesh bit-identical.
 #include <doctest/doctest.h>
 
 #include <volmap/core/error.hpp>
@@ -30,6 +30,34 @@ void require_ok(const TetMesh& m) {
   const InvariantReport r = m.check_invariants(true);
   INFO(r.problem);
   REQUIRE(r.ok);
+}
+
+// The adjacency after edits equals the one TetMesh builds from scratch from the live tets
+// (to_data() renumbers survivors in slot order): every opp entry and every vertex's boundary flag.
+void require_adjacency_as_rebuilt(const TetMesh& m) {
+  const TetMesh rebuilt(m.to_data());
+  std::vector<std::uint32_t> tet_id(m.num_tet_slots(), kInvalidIndex), vertex_id(m.num_vertex_slots(), kInvalidIndex);
+  std::uint32_t nt = 0, nv = 0;
+  for (std::uint32_t t = 0; t < m.num_tet_slots(); ++t)
+    if (m.tet_is_live(TetId(t))) tet_id[t] = nt++;
+  for (std::uint32_t v = 0; v < m.num_vertex_slots(); ++v)
+    if (m.vertex_is_live(VertexId(v))) vertex_id[v] = nv++;
+  REQUIRE(rebuilt.num_tets() == nt);
+  REQUIRE(rebuilt.num_vertices() == nv);
+  std::size_t wrong_opp = 0, wrong_boundary = 0;
+  for (std::uint32_t t = 0; t < m.num_tet_slots(); ++t) {
+    if (tet_id[t] == kInvalidIndex) continue;
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t o = m.opposite_array()[4 * std::size_t(t) + i];
+      const std::uint32_t expected = o == TetMesh::kBoundary ? TetMesh::kBoundary : 4 * tet_id[o >> 2] + (o & 3);
+      if (rebuilt.opposite_array()[4 * std::size_t(tet_id[t]) + i] != expected) ++wrong_opp;
+    }
+  }
+  for (std::uint32_t v = 0; v < m.num_vertex_slots(); ++v)
+    if (vertex_id[v] != kInvalidIndex && m.vertex_is_boundary(VertexId(v)) != rebuilt.vertex_is_boundary(VertexId(vertex_id[v])))
+      ++wrong_boundary;
+  CHECK(wrong_opp == 0);
+  CHECK(wrong_boundary == 0);
 }
 
 // Oriented boundary triangles (rotated to start at the smallest id), from the brute-force face map.
@@ -196,6 +224,7 @@ TEST_CASE("replace_cavity: random star-shaped ball cavities of a Kuhn grid repla
     const std::vector<double> positions = keep_c ? std::vector<double>() : std::vector<double>(p, p + 3);
     const CavityReplacement r = m.replace_cavity(cavity, fill, positions);
     require_ok(m);
+    require_adjacency_as_rebuilt(m);
     CHECK(m.topology_version() != version);
     CHECK(oriented_boundary(m) == boundary);
     CHECK(m.num_tets() == nt - cavity.size() + fill.size());
@@ -333,6 +362,7 @@ TEST_CASE("replace_cavity: fills that do not close onto the cavity are refused a
   // The good fill is accepted afterwards (the refusals really left a usable mesh).
   const CavityReplacement r = m.replace_cavity(cavity, good, at_p);
   require_ok(m);
+  require_adjacency_as_rebuilt(m);
   CHECK(r.vertices.size() == 1);
   CHECK_FALSE(m.vertex_is_live(c));
 }
@@ -376,6 +406,7 @@ TEST_CASE("replace_cavity: a glued fill face that is already a face outside the 
     } else {
       m.replace_cavity(cavity, fill);
       require_ok(m);
+      require_adjacency_as_rebuilt(m);
       CHECK(m.num_tets() == 2);
       CHECK(m.num_free_tet_slots() == 1);
     }

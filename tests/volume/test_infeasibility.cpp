@@ -4,7 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/tet_mesh.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 #include <volmap/volume/infeasibility.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/volume_map.hpp>

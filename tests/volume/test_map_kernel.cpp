@@ -10,13 +10,6 @@
 
 #include "map_test_meshes.hpp"
 
-namespace {
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-}  // namespace
-
 TEST_CASE("strict kernel of a tet's outward faces is its interior; reversed faces have none") {
   // VOLMAP-positive tet: orient3d(v0,v1,v2,v3) > 0.
   double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -42,12 +35,12 @@ TEST_CASE("link-kernel relocation repairs a vertex pushed out of its star, never
   // The only interior vertex is (0.5,0.5,0.5) = id 13; push it outside the cube.
   REQUIRE(!bnd[13]);
   X[3 * 13] = 1.7;
-  const auto before = exact_bad(X, m.tets);
+  const auto before = volmap::count_nonpositive(X, m.tets);
   REQUIRE(before > 0);
   auto r = volmap::relocate_into_link_kernels(volmap::TetMesh(m), bnd, X, 5);
   CHECK(r.nonpositive_before == before);
   CHECK(r.nonpositive_after == 0);
-  CHECK(exact_bad(X, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(X, m.tets) == 0);
   for (std::size_t v = 0; v < bnd.size(); ++v)
     if (bnd[v])
       for (int i = 0; i < 3; ++i) CHECK(X[3 * v + i] == m.xyz[3 * v + i]);

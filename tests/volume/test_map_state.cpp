@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/map_state.hpp>
 #include <volmap/volume/volume_map.hpp>
@@ -55,14 +56,14 @@ TEST_CASE("StageJudge: a worsening stage is undone, an improving or equal one is
   volmap::StageJudge judge(s);
   volmap::place_by_tutte(s);
   const std::vector<double> good = s.target_xyz();
-  REQUIRE(map_test::exact_bad(good, c.mesh.tets) == 0);
+  REQUIRE(volmap::count_nonpositive(good, c.mesh.tets) == 0);
   const volmap::StageVerdict first = judge.judge();
   CHECK(first.measured == 0);
   CHECK(first.kept == 0);
   CHECK_FALSE(first.undone);
   // A "stage" that scrambles the interior: worse, so undone bit-identically.
   std::vector<double> scrambled = map_test::scrambled_target(c.mesh, c.bnd, 7, 0.3);
-  const std::size_t scrambled_bad = map_test::exact_bad(scrambled, c.mesh.tets);
+  const std::size_t scrambled_bad = volmap::count_nonpositive(scrambled, c.mesh.tets);
   REQUIRE(scrambled_bad > 0);
   s.set_target_xyz(scrambled);
   const volmap::StageVerdict worse = judge.judge();
@@ -78,7 +79,7 @@ TEST_CASE("StageJudge: a worsening stage is undone, an improving or equal one is
   std::vector<double> half = scrambled;
   for (std::size_t v = 0; v < c.bnd.size() / 2; ++v)
     for (int i = 0; i < 3; ++i) half[3 * v + i] = good[3 * v + i];
-  const std::size_t half_bad = map_test::exact_bad(half, c.mesh.tets);
+  const std::size_t half_bad = volmap::count_nonpositive(half, c.mesh.tets);
   REQUIRE(half_bad < scrambled_bad);
   s.set_target_xyz(half);
   const volmap::StageVerdict better = judge2.judge();
@@ -90,7 +91,7 @@ TEST_CASE("StageJudge: a worsening stage is undone, an improving or equal one is
   std::size_t v = 0;
   while (c.bnd[v]) ++v;
   moved[3 * v] += 1e-9;
-  REQUIRE(map_test::exact_bad(moved, c.mesh.tets) == half_bad);
+  REQUIRE(volmap::count_nonpositive(moved, c.mesh.tets) == half_bad);
   s.set_target_xyz(moved);
   CHECK_FALSE(judge2.judge().undone);
   CHECK(s.target_xyz() == moved);
@@ -129,7 +130,7 @@ TEST_CASE("StageJudge: a worsening stage that refined the mesh is undone with th
 TEST_CASE("compute_volume_map: an expired time budget runs no untangling stage and certifies nothing it did not check") {
   AffineCase c(4);
   std::vector<double> initial = map_test::scrambled_target(c.mesh, c.bnd, 3, 0.3);
-  REQUIRE(map_test::exact_bad(initial, c.mesh.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(initial, c.mesh.tets) > 0);
   volmap::VolumeMapOptions o;
   o.initial_xyz = initial;
   o.time_limit_seconds = 1e-9;  // over before the first untangling stage
@@ -139,11 +140,11 @@ TEST_CASE("compute_volume_map: an expired time budget runs no untangling stage a
   CHECK(r.stages[1].name == "initial");
   CHECK(r.target_xyz == initial);
   CHECK_FALSE(r.certified);
-  CHECK(r.nonpositive == map_test::exact_bad(initial, c.mesh.tets));
+  CHECK(r.nonpositive == volmap::count_nonpositive(initial, c.mesh.tets));
   // The same without a limit is certified, and the result's arrays pass the exact check.
   o.time_limit_seconds = 0;
   const volmap::VolumeMapResult full = volmap::compute_volume_map(c.mesh, c.map, o);
   CHECK(full.certified);
-  CHECK(map_test::exact_bad(full.target_xyz, full.source.tets) == 0);
+  CHECK(volmap::count_nonpositive(full.target_xyz, full.source.tets) == 0);
   CHECK(full.stages.size() > 2);
 }

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -125,7 +126,7 @@ std::string surface_topology_problem(const TriangleSurface& s) {
 TetMeshData tetrahedralize_surface(const TriangleSurface& s, const TetrahedralizeOptions& options) {
   const std::string problem = surface_topology_problem(s);
   if (!problem.empty()) throw Error(ErrorKind::BadInput, "", 0, problem);
-  if (!(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "", 0, "quality bound must be >= 1");
+  if (!options.coarse && !(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "", 0, "quality bound must be >= 1");
   tetgenio in, out;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(s.num_vertices());
@@ -145,7 +146,9 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   }
   std::ostringstream sw;
   sw.precision(17);
-  sw << "pq" << options.quality << "YQz";
+  sw << "p";
+  if (!options.coarse) sw << "q" << options.quality;
+  sw << "YQz";
   if (options.max_volume > 0) sw << "a" << options.max_volume;
   std::string switches = sw.str();
   // TetGen runs in a child process: Debian's libtet frees its pools twice when it throws an error
@@ -240,7 +243,7 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
         throw Error(ErrorKind::Failed, "", 0, "TetGen returned a bad vertex id");
       q[k] = static_cast<std::uint32_t>(id);
     }
-    const int sgn = orient3d_filtered(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
+    const int sgn = orient3d(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
     if (sgn == 0) throw Error(ErrorKind::Failed, "", 0, "TetGen produced a degenerate tet " + std::to_string(t));
     if (sgn < 0) {
       std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive

@@ -2,8 +2,6 @@
 // its half-face structure; lists sorted by vertex ids).
 #include <volmap/volume/feasibility.hpp>
 
-#include "collinear.hpp"
-
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 
@@ -13,38 +11,6 @@
 namespace volmap {
 
 namespace {
-
-// Exact sign of 6 × the volume enclosed by the image of the outward boundary triangles:
-// Σ det[a; b; c] (the divergence theorem with the origin as apex; orient3d(a,b,c,d) > 0 for an
-// outward face and an inside point d, so a positively enclosed region gives a positive sum).
-// Double sum with a forward error bound (each term ≤ 5u·permanent, the summation ≤ n·u·Σ|term|,
-// u = 2^-53, taken with a 2× margin); an exact GMP rational sum when the filter cannot decide.
-int enclosed_volume_sign(const std::vector<std::array<std::uint32_t, 3>>& triangles, const double* X) {
-  double sum = 0, magnitude = 0;
-  for (const auto& t : triangles) {
-    const double* a = X + 3 * std::size_t(t[0]);
-    const double* b = X + 3 * std::size_t(t[1]);
-    const double* c = X + 3 * std::size_t(t[2]);
-    sum += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    magnitude += std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
-                 std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
-                 std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
-  }
-  const double u = 0x1p-53;
-  const double bound = 2.0 * (double(triangles.size()) + 8.0) * u * magnitude;
-  if (std::isfinite(sum) && std::isfinite(bound)) {
-    if (sum > bound) return 1;
-    if (sum < -bound) return -1;
-  }
-  Rational exact = 0;
-  for (const auto& t : triangles) {
-    Rational p[9];
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i) p[3 * k + i] = X[3 * std::size_t(t[k]) + i];
-    exact += p[0] * (p[4] * p[8] - p[5] * p[7]) + p[1] * (p[5] * p[6] - p[3] * p[8]) + p[2] * (p[3] * p[7] - p[4] * p[6]);
-  }
-  return exact > 0 ? 1 : (exact < 0 ? -1 : 0);
-}
 
 // Are the points others[0..n) (positions by P) within tol of the plane of triangle (p0, p1, p2)?
 // False for a triangle degenerate in double.
@@ -106,7 +72,8 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
     const auto fv = source.half_face_vertices(bfaces[f]);
     btri[f] = {fv[0].idx(), fv[1].idx(), fv[2].idx()};
   }
-  report.boundary_volume_sign = enclosed_volume_sign(btri, X);
+  static_assert(sizeof(btri[0]) == 3 * sizeof(std::uint32_t), "triangles are read as 3 ids each");
+  report.boundary_volume_sign = enclosed_volume_sign(X, nv, btri.empty() ? nullptr : btri[0].data(), btri.size());
   std::vector<TetId> star;
   // Are the points `others` (n of them) within tol of the plane of some boundary triangle at `a`?
   auto in_facet_plane_at = [&](std::uint32_t a, const std::uint32_t* others, int n) {
@@ -147,7 +114,7 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
     report.chord_edges.push_back(e);
     const std::uint32_t other[1] = {e[1]};
     const std::uint32_t other2[1] = {e[0]};
-    const bool coincident = P(e[0])[0] == P(e[1])[0] && P(e[0])[1] == P(e[1])[1] && P(e[0])[2] == P(e[1])[2];
+    const bool coincident = points_equal(P(e[0]), P(e[1]));
     if (coincident || in_facet_plane_at(e[0], other, 1) || in_facet_plane_at(e[1], other2, 1))
       report.blocking_chord_edges.push_back(e);
   }
@@ -182,7 +149,7 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
   for (const ChordFace& f : faces) {
     const auto& k = f.key;
     report.chord_faces.push_back(k);
-    bool blocking = collinear_exact(P(k[0]), P(k[1]), P(k[2]));
+    bool blocking = collinear(P(k[0]), P(k[1]), P(k[2]));
     if (!blocking) {
       const std::uint32_t others[2] = {k[1], k[2]};
       blocking = in_facet_plane_at(k[0], others, 2);

@@ -54,7 +54,6 @@ namespace {
 
 using untangle::det3;
 using untangle::edge_matrix;
-using untangle::exact_nonpositive;
 using untangle::signed_volume_sum;
 
 // Inverse of a row-major 3x3 matrix; returns false when singular.
@@ -491,7 +490,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   std::vector<double> candidate = target_xyz;
   auto finish = [&](const Eigen::VectorXd& x, double eps) {
     energy.write_back(x.data(), target_xyz);
-    result.nonpositive = exact_nonpositive(target_xyz, tets);
+    result.nonpositive = count_nonpositive(target_xyz, tets);
     result.certified = result.nonpositive == 0;
     result.final_epsilon = eps;
     result.min_det = energy.min_det(x.data());
@@ -500,7 +499,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   };
   const std::vector<double> x0 = energy.initial_variables();
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), Eigen::Index(x0.size()));
-  if (options.stop_when_certified && exact_nonpositive(target_xyz, tets) == 0) return finish(x, 0);
+  if (options.stop_when_certified && count_nonpositive(target_xyz, tets) == 0) return finish(x, 0);
   if (x.size() == 0) return finish(x, 0);
 
   untangle::GuardedObjective obj = make_guard(m, tets, candidate);
@@ -571,25 +570,19 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   return finish(x, eps);
 }
 
-LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
-                                       const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options) {
   const TimeBudget budget(options.time_limit_seconds);
   LocalUntangleResult result;
-  const std::size_t nv = target_xyz.size() / 3, nt = tets.size() / 4;
-  if (source_xyz.size() != target_xyz.size() || locked.size() != nv || tets.size() % 4 != 0)
-    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
-  std::vector<std::uint32_t> bad = untangle::exact_nonpositive_tets(target_xyz, tets);
+  const std::size_t nv = source.num_vertex_slots(), nt = source.num_tet_slots();
+  if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
+    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: the mesh has tombstones (compact it first)");
+  if (target_xyz.size() != 3 * nv || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
+  const std::vector<double>& source_xyz = source.positions();
+  const std::vector<std::uint32_t>& tets = source.tet_vertex_array();
+  std::vector<std::uint32_t> bad = nonpositive_tets(target_xyz, tets);
   result.nonpositive_before = result.nonpositive_after = bad.size();
   if (bad.empty()) return result;
-  // Vertex → tets CSR.
-  std::vector<std::uint32_t> vt_offset(nv + 1, 0), vt_tets(4 * nt);
-  for (std::uint32_t v : tets) ++vt_offset[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) vt_offset[v + 1] += vt_offset[v];
-  {
-    std::vector<std::uint32_t> fill(vt_offset.begin(), vt_offset.end() - 1);
-    for (std::size_t s = 0; s < 4 * nt; ++s) vt_tets[fill[tets[s]]++] = std::uint32_t(s / 4);
-  }
   int rings = options.rings;
   bool other_reference_tried = false;
   ReferenceShape reference = options.reference;
@@ -611,9 +604,9 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     for (int r = 0; r < rings; ++r) {
       next.clear();
       for (std::uint32_t v : frontier)
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k)
+        for (TetId t : source.vertex_tets(VertexId(v)))
           for (int j = 0; j < 4; ++j) {
-            const std::uint32_t u = tets[4 * std::size_t(vt_tets[k]) + j];
+            const std::uint32_t u = source.tet_vertex(t, j).idx();
             if (!in_region[u]) {
               in_region[u] = 1;
               next.push_back(u);
@@ -626,7 +619,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     std::vector<std::uint32_t> sub_tets, sub_vertices;
     for (std::size_t v = 0; v < nv; ++v)
       if (in_region[v] && !locked[v])
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k) tet_in[vt_tets[k]] = 1;
+        for (TetId t : source.vertex_tets(VertexId(std::uint32_t(v)))) tet_in[t.idx()] = 1;
     for (std::size_t t = 0; t < nt; ++t) {
       if (!tet_in[t]) continue;
       for (int k = 0; k < 4; ++k) {
@@ -650,7 +643,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       local_id[v] = std::uint32_t(-1);
     }
     result.largest_region_tets = std::max(result.largest_region_tets, sub_tets.size() / 4);
-    const std::size_t sub_before = exact_nonpositive(sub_target, sub_tets);
+    const std::size_t sub_before = count_nonpositive(sub_target, sub_tets);
     std::size_t sub_after = sub_before;
     std::vector<double> trial = sub_target;
     if (!sub_tets.empty()) {
@@ -662,7 +655,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       fo.time_limit_seconds = budget.option_seconds();
       try {
         ffm_untangle(sub_source, sub_tets, sub_locked, trial, fo);
-        sub_after = exact_nonpositive(trial, sub_tets);
+        sub_after = count_nonpositive(trial, sub_tets);
       } catch (const Error&) {
         sub_after = sub_before;  // e.g. the region's boundary encloses a non-positive volume: grow it
       }
@@ -682,7 +675,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       rings += options.ring_step;
       if (rings > options.max_rings) break;
     }
-    bad = untangle::exact_nonpositive_tets(target_xyz, tets);
+    bad = nonpositive_tets(target_xyz, tets);
   }
   result.nonpositive_after = bad.size();
   result.seconds = budget.elapsed();
@@ -693,7 +686,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
                                const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                ReferenceShape reference, int max_iterations, double time_limit_seconds) {
   QualityResult result;
-  if (exact_nonpositive(target_xyz, tets) != 0) return result;
+  if (count_nonpositive(target_xyz, tets) != 0) return result;
   FfmEnergy energy(source_xyz, tets, locked, target_xyz, reference, 0.5);
   if (energy.num_variables() == 0) return result;
   const FfmEnergy::Impl& m = energy.impl();
@@ -731,7 +724,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   }
   if (best_energy < result.energy_before) {
     energy.write_back(best.data(), candidate);
-    if (exact_nonpositive(candidate, tets) == 0) {
+    if (count_nonpositive(candidate, tets) == 0) {
       target_xyz = candidate;
       result.improved = true;
       result.energy_after = best_energy;

@@ -7,8 +7,6 @@
 #include <volmap/core/error.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 
-#include "collinear.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -176,8 +174,7 @@ class CertificateSearch {
       const auto ends = mesh_.edge_vertices(EdgeId(e));
       const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
       if (!all_locked(v, 2)) continue;
-      const double *a = at(X_, v[0]), *b = at(X_, v[1]);
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+      if (points_equal(at(X_, v[0]), at(X_, v[1])))
         keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}});
     }
   }
@@ -189,7 +186,7 @@ class CertificateSearch {
       if (o.is_valid() && o.idx() < h) continue;  // each interior face once
       const auto f = mesh_.half_face_vertices(hf);
       const std::uint32_t v[3] = {f[0].idx(), f[1].idx(), f[2].idx()};
-      if (all_locked(v, 3) && collinear_exact(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
+      if (all_locked(v, 3) && collinear(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
         keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}});
     }
   }
@@ -333,13 +330,12 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
     }
     case InfeasibilityKind::CoincidentEdge: {
       if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || !simplex_locked() || !in_tet(c.tet)) return false;
-      const double *a = at(X, c.simplex[0]), *b = at(X, c.simplex[1]);
-      return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+      return points_equal(at(X, c.simplex[0]), at(X, c.simplex[1]));
     }
     case InfeasibilityKind::DegenerateFace: {
       if (c.simplex.size() != 3 || !simplex_locked() || !in_tet(c.tet)) return false;
       const std::uint32_t a = c.simplex[0], b = c.simplex[1], d = c.simplex[2];
-      return a != b && b != d && a != d && collinear_exact(at(X, a), at(X, b), at(X, d));
+      return a != b && b != d && a != d && collinear(at(X, a), at(X, b), at(X, d));
     }
     case InfeasibilityKind::EmptyLinkKernel: {
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||

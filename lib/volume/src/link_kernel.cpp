@@ -16,10 +16,7 @@ RelocationResult relocate_into_link_kernels(const TetMesh& mesh, const std::vect
   const std::vector<std::uint32_t>& tets = mesh.tet_vertex_array();
   RelocationResult res;
   std::vector<std::int8_t> sign(nt);
-  auto count_bad = [&] {
-    const TetSignCounts c = orient3d_tets(X.data(), nv, tets.data(), nt, sign.data());
-    return c.zero + c.negative;
-  };
+  auto count_bad = [&] { return count_nonpositive(X.data(), nv, tets.data(), nt, sign.data()); };
   res.nonpositive_before = count_bad();
   std::size_t bad = res.nonpositive_before;
   std::vector<double> tri;

@@ -75,7 +75,7 @@ FfmResult run_ffm(MapState& s, const FfmOptions& options) {
 
 LocalUntangleResult run_local_ffm(MapState& s, const LocalUntangleOptions& options) {
   return on_flat_target(s, [&](std::vector<double>& x) {
-    return ffm_local_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);
+    return ffm_local_untangle(s.source, s.locked.data(), x, options);
   });
 }
 

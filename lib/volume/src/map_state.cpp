@@ -4,7 +4,7 @@
 
 #include <volmap/core/error.hpp>
 
-#include "untangle_support.hpp"
+#include <volmap/predicates.hpp>
 
 #include <cmath>
 #include <string>
@@ -22,7 +22,7 @@ const TetMeshData& checked_arrays(const TetMeshData& input) {
   if (input.tets.size() != 4 * nt || input.xyz.size() != 3 * nv) bad_input("inconsistent mesh arrays");
   for (std::uint32_t v : input.tets)
     if (v >= nv) bad_input("tet vertex id out of range");
-  if (untangle::exact_nonpositive(input.xyz, input.tets) != 0)
+  if (volmap::count_nonpositive(input.xyz, input.tets) != 0)
     bad_input("the source mesh has tets with orient3d <= 0 (not VOLMAP-positive)");
   return input;
 }
@@ -80,7 +80,7 @@ void MapState::require_compact() const {
 
 std::size_t MapState::count_nonpositive() const {
   require_compact();
-  return untangle::exact_nonpositive(target_xyz(), source.tet_vertex_array());
+  return volmap::count_nonpositive(target_xyz(), source.tet_vertex_array());
 }
 
 StageJudge::StageJudge(MapState& state) : state_(state) {}

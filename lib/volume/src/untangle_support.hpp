@@ -1,5 +1,5 @@
 // untangle_support.hpp — machinery shared by the per-tet untanglers (FFM in ffm.cpp, TLC in tlc.cpp):
-// the exact non-positive count, edge matrices, the free-variable layout (3 doubles per unlocked vertex,
+// edge matrices, the free-variable layout (3 doubles per unlocked vertex,
 // in increasing vertex id) with its CSR gather of per-tet gradients, the box-of-side-10 frame of
 // mapping.md §5, and the L-BFGS objective guard (time limit + exact stop).
 // Conventions: flat xyz arrays (3 doubles per vertex), tets as 4 0-based ids; edge matrices row-major,
@@ -19,11 +19,8 @@
 
 namespace volmap::untangle {
 
-// Exact number of tets with orient3d <= 0 (all tets when the batch predicate refuses the input).
-std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
-// Ids of the tets with exact orient3d <= 0.
-std::vector<std::uint32_t> exact_nonpositive_tets(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
-
+// The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
+// input sanity); they never certify: validity is the exact volmap::count_nonpositive.
 inline double det3(const double* A) {
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
 }

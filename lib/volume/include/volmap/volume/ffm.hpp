@@ -15,8 +15,10 @@
 // 0-based ids. Locked vertices are never written (bit-exact boundary).
 //
 // Exact stop: whenever every double determinant is positive, the unscaled candidate coordinates are
-// checked with volmap::orient3d_tets; the untangler stops as soon as that exact check passes.
+// checked with volmap::count_nonpositive; the untangler stops as soon as that exact check passes.
 #pragma once
+
+#include <volmap/core/tet_mesh.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -97,8 +99,9 @@ struct LocalUntangleResult {
   double seconds = 0;
 };
 
-LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
-                                       const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+// `source`: the rest mesh without tombstones (its stars give the rings); target_xyz and locked hold
+// 3 doubles and 1 flag per vertex.
+LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options = {});
 
 struct QualityResult {

@@ -5,10 +5,11 @@
 // only the locked entries are read. A certificate names the simplex and the constraints that cannot
 // all hold; each kind is checked exactly (volmap predicates, or exact rationals for the multipliers):
 //   FixedTet             — a tet with four locked vertices whose image has orient3d <= 0.
-//   CoincidentEdge       — an edge with two locked vertices mapped to the same point: every tet of
-//                          its star is flat whatever the free vertices do.
+//   CoincidentEdge       — an edge with two locked vertices mapped to the same point (exact
+//                          points_equal): every tet of its star is flat whatever the free
+//                          vertices do.
 //   DegenerateFace       — a face with three locked vertices whose images are collinear (exact
-//                          orient2d in the three coordinate planes): its tets are flat.
+//                          predicate collinear): its tets are flat.
 //   EmptyLinkKernel      — a free vertex v and link faces of v (each the face opposite v in a tet
 //                          of its star, its three vertices locked). Each tet needs
 //                          orient3d(face, x_v) > 0, i.e. n_F·x_v > n_F·a_F with
@@ -20,7 +21,7 @@
 #pragma once
 
 #include <volmap/core/tet_mesh.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <cstddef>
 #include <cstdint>
