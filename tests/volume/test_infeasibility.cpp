@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/tet_mesh.hpp>
+#include <volmap/io/io.hpp>
 #include <volmap/predicates_rational.hpp>
 #include <volmap/volume/infeasibility.hpp>
 #include <volmap/volume/kernel_lp.hpp>
@@ -11,7 +12,14 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
+#include <fstream>
 #include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+#include "vmap_test_util.hpp"
 
 namespace {
 
@@ -170,4 +178,33 @@ TEST_CASE("random bipyramid images: a certificate and an exactly checked kernel 
   // Both outcomes occur, so the test exercises both sides.
   CHECK(feasible > 20);
   CHECK(certified_empty > 20);
+}
+
+TEST_CASE("volmap-map --no-refine --json: the folded bipyramid is reported infeasible with its certificate, exit 1") {
+  const volmap::TetMeshData m = bipyramid();
+  const std::filesystem::path dir = volmap_test::scratch_dir("infeasible_bipyramid");
+  volmap::write_medit((dir / "in.mesh").string(), m);
+  {
+    std::ofstream map(dir / "map.txt");
+    map.precision(17);
+    const double folded_n[3] = {2, 0, -0.5};
+    for (std::uint32_t v = 1; v < 6; ++v) {
+      const double* p = v == 4 ? folded_n : &m.xyz[3 * v];
+      map << v << " " << p[0] << " " << p[1] << " " << p[2] << "\n";
+    }
+  }
+  const auto r = vmap_test::run(volmap_test::tool("volmap-map").string() + " " + (dir / "in.mesh").string() + " " +
+                                (dir / "map.txt").string() + " " + (dir / "out.mesh").string() + " --no-refine --json --time-limit 5");
+  CHECK(r.code == 1);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["certified"] == false);
+  REQUIRE(j.contains("infeasible"));
+  CHECK(j["infeasible"]["scope"] == "this-connectivity");
+  REQUIRE(j["infeasible"]["certificates"].size() == 1);
+  const auto& c = j["infeasible"]["certificates"][0];
+  CHECK(c["kind"] == "empty-link-kernel");
+  CHECK(c["simplex"] == std::vector<std::uint32_t>{0});
+  CHECK(c["constraint_tets"].size() == c["multipliers"].size());
+  CHECK(c["constraint_tets"].size() >= 2);
+  std::filesystem::remove_all(dir);
 }
