@@ -1,7 +1,7 @@
 // volmap-map — certified robust volume mapper (docs/mapping.md; issue 6), candidate-method contract:
 //   volmap-map <in.mesh> <map.txt> <out.mesh> [--method ffm|tlc] [--refined-input path]
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
-//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local]   (cascade tuning, see volume_map.hpp)
+//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local] [--no-kernel-descent]   (cascade tuning, see volume_map.hpp)
 //              [--initial init.(mesh|vtk|vtu)]
 // in.mesh may also be .vtk/.vtu/.msh/.ovm; its tets must be VOLMAP-positive (an input in the opposite
 // convention, as Gmsh and OpenVolumeMesh files are, is refused with exit 2 and the sentence of
@@ -18,6 +18,9 @@
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
 // Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
 // Certification re-reads the written files and runs the exact check on exactly those numbers.
+// When no map can exist, `infeasible` (JSON) says so: scope "any-refinement" (the boundary image
+// encloses a non-positive volume) or "this-connectivity" with the exact local certificates of
+// volmap/volume/infeasibility.hpp (kind, simplex, constraint tets, multipliers); exit 1 then.
 // Exit: 0 certified; 1 ran but not injective (out.mesh is STILL written with the best map found, so
 // it can be inspected; it must not be used as a valid map); 2 usage or bad input.
 #include "support/input_mesh.hpp"
@@ -38,7 +41,7 @@ int main(int argc, char** argv) {
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false, no_local = false;
+  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
   app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, VOLMAP-positive)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
   app.add_option("output", out_path, "output .mesh (same tets/vertices as the (refined) input)")->required();
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
   app.add_option("--ffm-inner", ffm_inner, "cascade: L-BFGS iterations per FFM outer step (0 = default)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
+  app.add_flag("--no-kernel-descent", no_kernel_descent, "cascade: skip the kernel-descent stages (exact single-vertex moves driven by the bad tets)");
   app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
@@ -100,6 +104,7 @@ int main(int argc, char** argv) {
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;
     opt.local_untangle = !no_local;
+    opt.kernel_descent = !no_kernel_descent;
     const volmap::VolumeMapResult r = volmap::compute_volume_map(input, map, opt);
 
     volmap::TetMeshData out = r.source;
@@ -161,7 +166,20 @@ int main(int argc, char** argv) {
                        {"stages", stages}};
       if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.feasibility.infeasible_with_any_refinement())
-        j["infeasible"] = "the boundary map encloses a non-positive volume: no injective map exists at any refinement";
+        j["infeasible"] = {{"scope", "any-refinement"},
+                           {"reason", "the boundary map encloses a non-positive volume: no injective map exists at any refinement"}};
+      else if (!r.refined && !r.infeasibility.empty()) {
+        nlohmann::json certificates = nlohmann::json::array();
+        for (const auto& c : r.infeasibility) {
+          std::vector<std::string> multipliers;
+          for (const auto& m : c.multipliers) multipliers.push_back(m.str());
+          certificates.push_back({{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
+                                  {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}});
+        }
+        j["infeasible"] = {{"scope", "this-connectivity"},
+                           {"reason", "exact local certificate: no map with every tet positive exists at the input connectivity"},
+                           {"certificates", certificates}};
+      }
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s: %s (%zu tets, %zu non-positive, growth %.4f, %s, %.2f s)\n", out_path.c_str(),
@@ -169,6 +187,10 @@ int main(int argc, char** argv) {
                   r.growth(), certified ? r.certified_by.c_str() : "-", r.seconds);
       if (r.feasibility.infeasible_with_any_refinement())
         std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
+      else if (!r.refined && !r.infeasibility.empty()) {
+        std::printf("  infeasible at the input connectivity (exact local certificates):\n");
+        for (const auto& c : r.infeasibility) std::printf("    %s\n", volmap::describe(c).c_str());
+      }
       else if (!certified && refined_path.empty() && !no_refine)
         std::printf("  refinement was off: give --refined-input <path> to allow chord splits and cone repair\n");
       for (const auto& s : r.stages)

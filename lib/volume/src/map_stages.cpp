@@ -28,6 +28,11 @@ FeasibilityReport analyze_feasibility(const MapState& s) {
   return analyze_feasibility(s.source, s.locked.data(), s.target_xyz());
 }
 
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& s) {
+  s.require_compact();
+  return find_local_infeasibility(s.source, s.locked.data(), s.target_xyz());
+}
+
 ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& report) {
   s.require_compact();
   return split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);  // splits leave no tombstone
@@ -56,6 +61,10 @@ TlcResult run_tlc(MapState& s, const TlcOptions& options) {
 
 RelocationResult run_link_kernel(MapState& s, int max_sweeps) {
   return on_flat_target(s, [&](std::vector<double>& x) { return relocate_into_link_kernels(s.source, s.locked.data(), x, max_sweeps); });
+}
+
+KernelDescentResult run_kernel_descent(MapState& s) {
+  return on_flat_target(s, [&](std::vector<double>& x) { return descend_into_link_kernels(s.source, s.locked.data(), x); });
 }
 
 FfmResult run_ffm(MapState& s, const FfmOptions& options) {

@@ -42,6 +42,8 @@ class VolumeMapper {
       result_.certified_by.clear();
       return finish(false);
     }
+    // An exact local certificate at fixed connectivity (§10): no untangler can succeed.
+    if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
     if (bad_ > 0 && options_.method == MapMethod::Ffm && !few_left_for_b1()) global_ffm();
     if (bad_ > 0 && b1_rounds_) repair_rounds();
@@ -99,7 +101,10 @@ class VolumeMapper {
 
   // ---- §3, §4, §2: before untangling ----------------------------------------------------------
   void analyze() {
-    timed_stage("feasibility", [&] { result_.feasibility = analyze_feasibility(state_); });
+    timed_stage("feasibility", [&] {
+      result_.feasibility = analyze_feasibility(state_);
+      result_.infeasibility = find_local_infeasibility(state_);
+    });
   }
 
   void split_blocking_chords_stage() {
@@ -127,6 +132,12 @@ class VolumeMapper {
   void link_kernel() {
     if (bad_ == 0 || !cascade() || budget_->expired()) return;
     judged_stage("link-kernel", [&] { run_link_kernel(state_, 50); });
+    kernel_descent();
+  }
+
+  void kernel_descent() {
+    if (bad_ == 0 || !cascade() || !options_.kernel_descent || budget_->expired()) return;
+    judged_stage("kernel-descent", [&] { run_kernel_descent(state_); });
   }
 
   // Local FFM (Newton) on the region of the remaining non-positive tets, the rest frozen.
@@ -135,6 +146,7 @@ class VolumeMapper {
     LocalUntangleOptions lo;
     lo.time_limit_seconds = budget_->option_seconds(share);
     judged_stage("ffm-local", [&] { run_local_ffm(state_, lo); });
+    kernel_descent();
   }
 
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, then link-kernel relocation.

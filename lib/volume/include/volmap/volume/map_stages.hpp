@@ -10,6 +10,8 @@
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/infeasibility.hpp>
+#include <volmap/volume/kernel_descent.hpp>
 #include <volmap/volume/link_kernel.hpp>
 #include <volmap/volume/map_state.hpp>
 #include <volmap/volume/tlc.hpp>
@@ -18,6 +20,8 @@ namespace volmap {
 
 // §3 on the current state (only the locked targets are read).
 FeasibilityReport analyze_feasibility(const MapState& state);
+// §10 exact local infeasibility certificates of the current state (only the locked targets are read).
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& state);
 // §4 B0: splits the blocking chords of `report`; new vertices are unlocked, their target unset.
 ChordSplitResult split_blocking_chords(MapState& state, const FeasibilityReport& report);
 // §2: every unlocked vertex at the uniform-Laplacian (Tutte) solution for the locked ones.
@@ -28,6 +32,8 @@ void place_new_vertices_by_laplacian(MapState& state, std::size_t keep);
 // §6 TLC, §7 link-kernel relocation, §5 FFM (global, local, quality pass) on the state's target.
 TlcResult run_tlc(MapState& state, const TlcOptions& options);
 RelocationResult run_link_kernel(MapState& state, int max_sweeps);
+// §10 bad-tet-driven descent of single vertices towards their link kernel.
+KernelDescentResult run_kernel_descent(MapState& state);
 FfmResult run_ffm(MapState& state, const FfmOptions& options);
 LocalUntangleResult run_local_ffm(MapState& state, const LocalUntangleOptions& options);
 QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds);

@@ -1,12 +1,15 @@
 // volmap/volume/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
-// Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
+// Pipeline (what is implemented): exact feasibility analysis (§3) and local infeasibility
+// certificates (§10; at fixed connectivity a certificate ends the run) → B0 chord splitting of the
 // blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp; or a given
 // initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
 // relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
 // global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
 // and local FFM → [with refinement: B1 cone repair (§7) tried after every stage that leaves few bad
 // tets, global FFM skipped then] rounds of B1 → link-kernel → local FFM (small-lift TLC, then global
-// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only).
+// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only). In the
+// cascade every link-kernel and local-FFM stage that leaves bad tets is followed by the kernel
+// descent (§10).
 // The stages run on one MapState (map_state.hpp, map_stages.hpp); each is judged by the exact count
 // of non-positive tets and undone when it makes it worse (StageJudge). A result is certified only
 // when check_map (the exact check of the check wing) certifies the returned arrays.
@@ -17,6 +20,7 @@
 #pragma once
 
 #include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/infeasibility.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
@@ -55,6 +59,9 @@ struct VolumeMapOptions {
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
   // run after each global untangling stage that stops short of certification (cascade only).
   bool local_untangle = true;
+  // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
+  // (cascade only).
+  bool kernel_descent = true;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
@@ -80,6 +87,10 @@ struct VolumeMapResult {
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
+  // Exact local certificates that no strictly positive map exists at the input connectivity
+  // (infeasibility.hpp, each verified). Without refinement a non-empty list ends the run before
+  // any untangler (the result is then not certified, and nothing else could be).
+  std::vector<InfeasibilityCertificate> infeasibility;
   std::vector<VolumeMapStage> stages;
   double seconds = 0;
   double growth() const { return input_tets ? double(source.num_tets()) / double(input_tets) - 1.0 : 0.0; }
