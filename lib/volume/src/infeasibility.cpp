@@ -16,46 +16,9 @@ namespace volmap {
 
 namespace {
 
-using Vec3Q = std::array<Rational, 3>;
-
-// The strict constraint n·x > d that orient3d(a,b,c,x) > 0 is, for the outward face (a,b,c):
-// n = (c − a) × (b − a), d = n·a, exactly.
-struct LinkConstraint {
-  Vec3Q n;
-  Rational d;
-};
-
-LinkConstraint link_constraint(const double* a, const double* b, const double* c) {
-  Vec3Q u, w, pa;
-  for (int i = 0; i < 3; ++i) {
-    pa[i] = Rational(a[i]);
-    u[i] = Rational(c[i]) - pa[i];
-    w[i] = Rational(b[i]) - pa[i];
-  }
-  LinkConstraint k;
-  k.n = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-  k.d = k.n[0] * pa[0] + k.n[1] * pa[1] + k.n[2] * pa[2];
-  return k;
-}
-
-// The Farkas condition of infeasibility.hpp for constraints `ks` and multipliers `lambda`.
-bool farkas_holds(const std::vector<LinkConstraint>& ks, const std::vector<Rational>& lambda) {
-  if (ks.size() != lambda.size() || ks.empty()) return false;
-  Vec3Q sum_n = {Rational(0), Rational(0), Rational(0)};
-  Rational sum_d = 0;
-  bool some_positive = false;
-  for (std::size_t j = 0; j < ks.size(); ++j) {
-    if (lambda[j] < 0) return false;
-    if (lambda[j] > 0) some_positive = true;
-    for (int i = 0; i < 3; ++i) sum_n[i] += lambda[j] * ks[j].n[i];
-    sum_d += lambda[j] * ks[j].d;
-  }
-  return some_positive && sum_n[0] == 0 && sum_n[1] == 0 && sum_n[2] == 0 && sum_d >= 0;
-}
-
 // The null vector of the 3×k matrix whose columns are the normals of `ks` (k <= 4), when the null
 // space has dimension one; scaled so that its entries are >= 0 when that is possible. Empty otherwise.
-std::vector<Rational> one_dimensional_null_vector(const std::vector<LinkConstraint>& ks) {
+std::vector<Rational> one_dimensional_null_vector(const std::vector<StrictHalfspace>& ks) {
   const std::size_t k = ks.size();
   std::vector<std::vector<Rational>> m(3, std::vector<Rational>(k));
   for (int r = 0; r < 3; ++r)
@@ -243,16 +206,16 @@ class CertificateSearch {
       }
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return residual[a] < residual[b]; });
     }
-    std::vector<LinkConstraint> ks(m);
-    for (std::size_t j = 0; j < m; ++j) ks[j] = link_constraint(&tri[9 * j], &tri[9 * j + 3], &tri[9 * j + 6]);
+    std::vector<StrictHalfspace> ks(m);
+    for (std::size_t j = 0; j < m; ++j) ks[j] = strict_halfspace(&tri[9 * j], &tri[9 * j + 3], &tri[9 * j + 6]);
     for (std::size_t pool : {std::min<std::size_t>(m, 8), m <= 14 ? m : std::size_t(0)}) {
       if (pool == 0) break;
-      std::vector<LinkConstraint> sub;
+      std::vector<StrictHalfspace> sub;
       const bool hit = for_each_small_subset(pool, [&](const std::vector<std::size_t>& s) {
         sub.clear();
         for (std::size_t i : s) sub.push_back(ks[order[i]]);
         std::vector<Rational> lambda = one_dimensional_null_vector(sub);
-        if (!farkas_holds(sub, lambda)) return false;
+        if (!farkas_certifies_empty(sub, lambda)) return false;
         InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda};
         for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
         keep(std::move(c));
@@ -341,13 +304,13 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||
           c.constraint_tets.size() != c.multipliers.size() || !in_tet(c.tet))
         return false;
-      std::vector<LinkConstraint> ks;
+      std::vector<StrictHalfspace> ks;
       for (std::uint32_t t : c.constraint_tets) {
         std::array<std::uint32_t, 3> f;
         if (!locked_link_face(mesh, locked, t, c.simplex[0], f)) return false;
-        ks.push_back(link_constraint(at(X, f[0]), at(X, f[1]), at(X, f[2])));
+        ks.push_back(strict_halfspace(at(X, f[0]), at(X, f[1]), at(X, f[2])));
       }
-      return farkas_holds(ks, c.multipliers);
+      return farkas_certifies_empty(ks, c.multipliers);
     }
   }
   return false;
