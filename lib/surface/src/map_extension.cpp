@@ -1,11 +1,13 @@
 // Carrying a boundary map across midpoint edge splits (see map_extension.hpp).
-// Replay: start from the original boundary triangles; for each new vertex v (increasing id, the order
-// the splits were made in), its parent edge is the current boundary edge whose rounded midpoint
-// 0.5*(a+b) equals v's position bit for bit; split that edge in the triangle list and give v the
-// midpoint of the parents' images. At the end the replayed triangles must be exactly the refined
-// mesh's boundary triangles, which certifies the parent recovery.
+// Replay on the original boundary as an OpenMesh surface (boundary_surface.hpp): for each new vertex
+// v (increasing id, the order the splits were made in), its parent edge is the current surface edge
+// whose rounded midpoint 0.5*(a+b) equals v's position bit for bit; OpenMesh's 2-to-4 split inserts
+// v there and v gets the midpoint of the parents' images. At the end the replayed triangles must be
+// exactly the refined mesh's boundary triangles, which certifies the parent recovery. The only index
+// kept beside the mesh is geometric: rounded midpoint -> surface edge.
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
+#include <volmap/surface/boundary_surface.hpp>
 #include <volmap/surface/map_extension.hpp>
 
 #include <algorithm>
@@ -16,12 +18,7 @@
 namespace volmap {
 namespace {
 
-constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 using Triangle = std::array<std::uint32_t, 3>;
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-}
 
 // A rounded midpoint as a hashable key (bit patterns of the three doubles; -0 folded into +0).
 struct PointKey {
@@ -42,68 +39,60 @@ PointKey point_key(const double* p) {
   return k;
 }
 
+// The original boundary surface, split edge by edge in the order of the refined mesh's new vertices.
 class SplitReplay {
  public:
-  SplitReplay(const TetMeshData& refined, std::vector<Triangle> triangles) : xyz_(refined.xyz), tris_(std::move(triangles)) {
-    edges_.reserve(3 * tris_.size());
-    midpoints_.reserve(3 * tris_.size());
-    for (std::uint32_t t = 0; t < tris_.size(); ++t)
-      for (int k = 0; k < 3; ++k) attach(tris_[t][k], tris_[t][(k + 1) % 3], t);
+  SplitReplay(const TetMeshData& original, const TetMeshData& refined)
+      : surface_(extract_boundary_surface(TetMesh(original))), xyz_(refined.xyz) {
+    if (!surface_.complete()) throw Error(ErrorKind::Failed, "", 0, "the original boundary is not a manifold surface");
+    SurfaceMesh& m = surface_.mesh;
+    midpoints_.reserve(2 * m.n_edges());
+    for (auto e : m.edges()) index_midpoint(e);
   }
 
-  // The current edge whose rounded midpoint is at v's position, or false.
-  bool find_parent_edge(std::uint32_t v, std::uint32_t& a, std::uint32_t& b) const {
+  // The current edge whose rounded midpoint is at v's position, or an invalid handle.
+  SurfaceMesh::EdgeHandle parent_edge(std::uint32_t v) const {
     const auto it = midpoints_.find(point_key(&xyz_[3 * v]));
-    if (it == midpoints_.end()) return false;
-    a = static_cast<std::uint32_t>(it->second >> 32);
-    b = static_cast<std::uint32_t>(it->second & 0xFFFFFFFFu);
-    return true;
+    return it == midpoints_.end() ? SurfaceMesh::EdgeHandle() : it->second;
+  }
+  std::array<std::uint32_t, 2> ends(SurfaceMesh::EdgeHandle e) const {
+    const auto h = surface_.mesh.halfedge_handle(e, 0);
+    return {surface_.tet_vertex_of(surface_.mesh.from_vertex_handle(h)), surface_.tet_vertex_of(surface_.mesh.to_vertex_handle(h))};
   }
 
-  void split(std::uint32_t a, std::uint32_t b, std::uint32_t v) {
-    const auto incident = edges_.at(edge_key(a, b));
-    edges_.erase(edge_key(a, b));
-    midpoints_.erase(midpoint_key(a, b));
-    for (const std::uint32_t t : incident) {
-      if (t == kNone) continue;
-      // Rotate (p,q,r) so that (p,q) is the split edge in the triangle's own direction.
-      Triangle tri = tris_[t];
-      while (!((tri[0] == a && tri[1] == b) || (tri[0] == b && tri[1] == a))) std::rotate(tri.begin(), tri.begin() + 1, tri.end());
-      const std::uint32_t p = tri[0], q = tri[1], r = tri[2];
-      const auto n = static_cast<std::uint32_t>(tris_.size());
-      tris_[t] = {p, v, r};
-      tris_.push_back({v, q, r});
-      auto& qr = edges_.at(edge_key(q, r));
-      std::replace(qr.begin(), qr.end(), t, n);
-      attach(p, v, t);
-      attach(v, q, n);
-      attach(v, r, t);
-      attach(v, r, n);
+  void split(SurfaceMesh::EdgeHandle e, std::uint32_t v) {
+    SurfaceMesh& m = surface_.mesh;
+    midpoints_.erase(midpoint_key(e));
+    const auto nv = m.add_vertex(SurfaceMesh::Point(xyz_[3 * v], xyz_[3 * v + 1], xyz_[3 * v + 2]));
+    m.property(surface_.tet_vertex, nv) = v;
+    m.split(e, nv);
+    for (auto ve : m.ve_range(nv)) index_midpoint(ve);
+  }
+
+  std::vector<Triangle> triangles() const {
+    std::vector<Triangle> tris;
+    tris.reserve(surface_.mesh.n_faces());
+    for (auto f : surface_.mesh.faces()) {
+      Triangle t;
+      int k = 0;
+      for (auto v : surface_.mesh.fv_range(f)) t[k++] = surface_.tet_vertex_of(v);
+      tris.push_back(t);
     }
+    return tris;
   }
-
-  std::vector<Triangle>& triangles() { return tris_; }
 
  private:
-  PointKey midpoint_key(std::uint32_t a, std::uint32_t b) const {
-    double m[3];
-    for (int k = 0; k < 3; ++k) m[k] = 0.5 * (xyz_[3 * a + k] + xyz_[3 * b + k]);
-    return point_key(m);
+  PointKey midpoint_key(SurfaceMesh::EdgeHandle e) const {
+    const auto [a, b] = ends(e);
+    double mid[3];
+    for (int k = 0; k < 3; ++k) mid[k] = 0.5 * (xyz_[3 * a + k] + xyz_[3 * b + k]);
+    return point_key(mid);
   }
-  void attach(std::uint32_t a, std::uint32_t b, std::uint32_t t) {
-    auto [it, inserted] = edges_.try_emplace(edge_key(a, b), std::array<std::uint32_t, 2>{kNone, kNone});
-    auto& slots = it->second;
-    if (slots[0] == t || slots[1] == t) return;
-    if (slots[0] == kNone) slots[0] = t;
-    else if (slots[1] == kNone) slots[1] = t;
-    else throw Error(ErrorKind::Failed, "", 0, "boundary edge with more than two triangles while replaying splits");
-    if (inserted) midpoints_.emplace(midpoint_key(a, b), edge_key(a, b));
-  }
+  void index_midpoint(SurfaceMesh::EdgeHandle e) { midpoints_[midpoint_key(e)] = e; }
 
+  BoundarySurface surface_;
   const std::vector<double>& xyz_;
-  std::vector<Triangle> tris_;
-  std::unordered_map<std::uint64_t, std::array<std::uint32_t, 2>> edges_;
-  std::unordered_map<PointKey, std::uint64_t, PointKeyHash> midpoints_;
+  std::unordered_map<PointKey, SurfaceMesh::EdgeHandle, PointKeyHash> midpoints_;
 };
 
 std::vector<Triangle> boundary_triangles(const TetMeshData& mesh) {
@@ -138,13 +127,14 @@ BoundaryMap extend_boundary_map_over_splits(const BoundaryMap& map, const TetMes
     has_image[v] = 1;
   }
 
-  SplitReplay replay(refined, boundary_triangles(original));
+  SplitReplay replay(original, refined);
   for (auto v = static_cast<std::uint32_t>(old_nv); v < nv; ++v) {
-    std::uint32_t a, b;
-    if (!replay.find_parent_edge(v, a, b)) continue;  // an interior vertex (checked below)
+    const auto e = replay.parent_edge(v);
+    if (!e.is_valid()) continue;  // an interior vertex (checked below)
+    const auto [a, b] = replay.ends(e);
     if (!has_image[a] || !has_image[b])
       throw Error(ErrorKind::Failed, "", 0, "boundary vertex without image while replaying splits");
-    replay.split(a, b, v);
+    replay.split(e, v);
     for (int k = 0; k < 3; ++k) image[3 * v + k] = 0.5 * (image[3 * a + k] + image[3 * b + k]);
     has_image[v] = 1;
   }
