@@ -81,7 +81,7 @@ Vec deform(const std::string& name, const Vec& u) {
     const double bend_radius = 2.2, angle = ex / bend_radius;
     return {(bend_radius - ey) * std::sin(angle), bend_radius - (bend_radius - ey) * std::cos(angle), ez};
   }
-  throw Error(ErrorKind::BadInput, "", 0, "unknown built-in shape '" + name + "'");
+  throw Error(ErrorKind::BadInput, "unknown built-in shape '" + name + "'");
 }
 
 }  // namespace
@@ -93,7 +93,7 @@ const std::vector<std::string>& builtin_shape_names() {
 
 SurfaceData make_builtin_shape(const std::string& name, int subdivisions) {
   if (subdivisions < 0 || subdivisions > 7)
-    throw Error(ErrorKind::BadInput, "", 0, "subdivisions must be in [0, 7]");
+    throw Error(ErrorKind::BadInput, "subdivisions must be in [0, 7]");
   deform(name, {1, 0, 0});  // validates the name before any work
   std::vector<Vec> points;
   std::vector<std::uint32_t> tris;

@@ -286,10 +286,10 @@ double tet_scaled_jacobian_volmap(const double* p0, const double* p1, const doub
 MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, const MetricsOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (!(options.upper >= 6.0) || !std::isfinite(options.upper)) {
-    throw_bad_input("", 0, "upper bound must be a finite number >= 6 (the largest lower clamp)");
+    throw Error(ErrorKind::BadInput, "upper bound must be a finite number >= 6 (the largest lower clamp)");
   }
   if (in.xyz.size() % 3 != 0 || in.tets.size() % 4 != 0 || out.xyz.size() % 3 != 0 || out.tets.size() % 4 != 0) {
-    throw_bad_input("", 0, "malformed mesh arrays");
+    throw Error(ErrorKind::BadInput, "malformed mesh arrays");
   }
   match_connectivity(in, out);  // throws on any mismatch
   const std::size_t nt = in.num_tets(), nv = in.num_vertices();
@@ -302,7 +302,7 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
   if (counts_in.positive != nt) {
     const std::size_t first = static_cast<std::size_t>(
         std::find_if(sign_in.begin(), sign_in.end(), [](std::int8_t s) { return s <= 0; }) - sign_in.begin());
-    throw_bad_input("", 0, "input mesh has " + std::to_string(nt - counts_in.positive) +
+    throw Error(ErrorKind::BadInput, "input mesh has " + std::to_string(nt - counts_in.positive) +
                                " tets that are not VOLMAP-positive (exact orient3d <= 0; first: tet " +
                                std::to_string(first) + "): metrics need a positive source mesh");
   }
