@@ -21,8 +21,20 @@ namespace volmap::io_detail {
 // significant digits; longer tokens are rejected as malformed rather than parsed).
 inline constexpr std::size_t kMaxNumberChars = 1100;
 
-// Reads a whole file. Throws Error(Io) when it is missing, a directory or unreadable.
-std::string read_whole_file(const std::string& path);
+// How read_whole_file vets what it reads, before allocating for the rest of the file.
+struct ReadOptions {
+  bool text = false;             // a NUL byte anywhere is refused ("binary data in a text file")
+  std::size_t text_prefix = 0;   // binary formats with a text header: no NUL in the first bytes
+  std::size_t max_line = 0;      // longest line accepted (0 = unbounded)
+  bool strip_bom = true;         // a leading UTF-8 byte-order mark is dropped
+};
+// Streams (FIFOs, character devices) are read up to this many bytes; larger ones are refused.
+inline constexpr std::size_t kMaxStreamBytes = std::size_t(1) << 30;
+
+// Reads a whole file. Throws Error(Io) when it is missing, a directory, unreadable or a stream
+// longer than kMaxStreamBytes, Error(BadInput) when the content breaks `options` (checked as the
+// bytes arrive, so /dev/zero or a huge sparse file is refused after its first block).
+std::string read_whole_file(const std::string& path, const ReadOptions& options = {});
 
 struct Token {
   std::string_view text;
