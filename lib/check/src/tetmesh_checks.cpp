@@ -79,8 +79,8 @@ void flip_all_tets(TetMeshData& mesh) {
 }
 
 TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOptions& options) {
-  if (mesh.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "coordinate array size is not a multiple of 3");
-  if (mesh.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "", 0, "tet array size is not a multiple of 4");
+  if (mesh.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "coordinate array size is not a multiple of 3");
+  if (mesh.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "tet array size is not a multiple of 4");
   TetMeshCheckReport r;
   r.num_vertices = mesh.num_vertices();
   r.num_tets = mesh.num_tets();
@@ -89,7 +89,7 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
   tbb::parallel_invoke(
       [&] { r.signs = orient3d_tets(mesh.xyz.data(), r.num_vertices, mesh.tets.data(), r.num_tets, nullptr); },
       [&] { r.topology = analyze_topology(mesh); });
-  if (!r.signs.ok) throw Error(ErrorKind::BadInput, "", 0, std::string("orientation: ") + r.signs.error);
+  if (!r.signs.ok) throw Error(ErrorKind::BadInput, std::string("orientation: ") + r.signs.error);
 
   // Boundary triangles (outward for VOLMAP-positive tets) -> exact self-intersection test.
   const TopologyReport& topo = r.topology;
@@ -112,14 +112,16 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
   else
     r.orientation = OrientationClass::Empty;
 
-  const std::string counts = "+" + fmt(s.positive) + " / -" + fmt(s.negative) + " / 0: " + fmt(s.zero);
+  const std::string counts = fmt(s.positive) + " positive, " + fmt(s.negative) + " negative, " + fmt(s.zero) +
+                             " zero-volume tets";
   // 1. orientation
   {
     CheckItem c{"orientation", r.orientation == OrientationClass::AllPositive, ""};
     switch (r.orientation) {
       case OrientationClass::AllPositive: c.detail = counts + " (VOLMAP convention, orient3d > 0)"; break;
       case OrientationClass::CoherentlyOpposite:
-        c.detail = counts + ": coherently opposite convention (no tet has orient3d > 0); --fix flips every tet";
+        c.detail = counts + ": no tet is positive, the mesh uses the opposite orientation convention (e.g. Gmsh's); "
+                   "--fix flips every tet";
         break;
       case OrientationClass::Mixed: {
         const bool pos_minority = s.positive <= s.negative;
@@ -176,7 +178,7 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
 // ------------------------------------------------------------------------------------ surfaces --
 SurfaceCheckReport check_triangle_surface(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tris,
                                           const SelfIntersectionOptions& options) {
-  if (xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "coordinate array size is not a multiple of 3");
+  if (xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "coordinate array size is not a multiple of 3");
   SurfaceCheckReport r;
   r.topology = analyze_surface_topology(xyz.size() / 3, tris);
   r.self_intersections = find_self_intersections(xyz, tris, options);
