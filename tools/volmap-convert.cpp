@@ -1,8 +1,9 @@
 // volmap-convert <in> <out> [--json] [--binary] [--vtu-ascii]
 // Converts tet meshes between Medit .mesh, legacy VTK .vtk and VTK XML .vtu, chosen by extension
 // (case-insensitive), keeping vertex order, tet order and each tet's vertex order; Medit labels are
-// carried along. Exit codes: 0 ok, 2 usage or bad input (one-line reason on stderr). The output is
-// written atomically: on any error no output file appears.
+// carried along. A format tool: it copies any readable mesh, valid or not (volmap-tetmesh-check
+// judges it). Exit codes: 0 ok, 2 usage or bad input (one-line reason on stderr). The output is
+// written atomically: on any error no output file appears; it never replaces its input.
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io.hpp>
@@ -33,32 +34,29 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(
       app, argc, argv,
       [&]() {
-        const auto in_format = volmap::tet_mesh_format(input);
-        const auto out_format = volmap::tet_mesh_format(output);
-        if (in_format == volmap::TetMeshFormat::Unknown)
-          throw volmap::Error(volmap::ErrorKind::Unsupported, input, 0, "unknown input extension (expected .mesh, .vtk or .vtu)");
-        if (out_format == volmap::TetMeshFormat::Unknown)
-          throw volmap::Error(volmap::ErrorKind::Unsupported, output, 0, "unknown output extension (expected .mesh, .vtk or .vtu)");
+        volmap_tools::RunFiles files;
+        volmap::require_tet_mesh_extension(input);
+        files.input(input, "input mesh");
+        volmap::AtomicOutput& out = files.tet_mesh_output(output, "output mesh");
         const auto t0 = std::chrono::steady_clock::now();
         const volmap::TetMeshData mesh = volmap::read_tet_mesh(input);
         const auto t1 = std::chrono::steady_clock::now();
         volmap::TetMeshWriteOptions options;
         options.vtk_binary = binary;
         options.vtu_encoding = vtu_ascii ? volmap::VtuEncoding::Ascii : volmap::VtuEncoding::AppendedRaw;
-        volmap::write_tet_mesh(output, mesh, options);
+        volmap::write_tet_mesh(out, mesh, options);
+        files.commit();
         const auto t2 = std::chrono::steady_clock::now();
         if (json) {
-          nlohmann::json j{{"ok", true},
-                           {"exit_code", 0},
-                           {"input", input},
-                           {"output", output},
-                           {"input_format", format_name(in_format)},
-                           {"output_format", format_name(out_format)},
-                           {"vertices", mesh.num_vertices()},
-                           {"tets", mesh.num_tets()},
-                           {"read_ms", std::chrono::duration<double, std::milli>(t1 - t0).count()},
-                           {"write_ms", std::chrono::duration<double, std::milli>(t2 - t1).count()}};
-          std::cout << j.dump() << "\n";
+          return volmap_tools::print_json({{"input", input},
+                                           {"output", output},
+                                           {"input_format", format_name(volmap::tet_mesh_format(input))},
+                                           {"output_format", format_name(volmap::tet_mesh_format(output))},
+                                           {"vertices", mesh.num_vertices()},
+                                           {"tets", mesh.num_tets()},
+                                           {"read_ms", std::chrono::duration<double, std::milli>(t1 - t0).count()},
+                                           {"write_ms", std::chrono::duration<double, std::milli>(t2 - t1).count()}},
+                                          volmap_tools::kExitOk);
         }
         return volmap_tools::kExitOk;
       },

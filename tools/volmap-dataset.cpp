@@ -156,12 +156,14 @@ int main(int argc, char** argv) {
   app.add_option("--group", group, "group folder name, e.g. G7")->required();
   app.add_option("--domains", domains_text, "comma-separated domains (cube,tet,pyr,octa,star,sphere)");
   app.add_option("--jobs,-j", jobs, "surfaces processed in parallel")->check(CLI::Range(1, 64));
-  app.add_option("--quality", quality, "TetGen radius-edge bound (q switch)");
-  app.add_option("--max-volume", max_volume, "TetGen maximum tet volume (a switch)");
+  app.add_option("--quality", quality, "TetGen radius-edge bound (q switch), at least 1")
+      ->check(volmap_tools::finite_range(1.0, 1e300));
+  app.add_option("--max-volume", max_volume, "TetGen maximum tet volume (a switch)")
+      ->check(volmap_tools::finite_non_negative());
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     if (group.size() < 2 || group[0] != 'G' || group.find_first_not_of("0123456789", 1) != std::string::npos)
-      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "--group must look like G<number>, got '" + group + "'");
+      throw volmap::Error(volmap::ErrorKind::BadInput, "--group must look like G<number>, got '" + group + "'");
     std::vector<std::string> domains;
     {
       std::stringstream ss(domains_text);
@@ -169,7 +171,7 @@ int main(int argc, char** argv) {
         if (!d.empty()) {
           const auto& known = volmap::volmap_domain_suffixes();
           if (std::find(known.begin(), known.end(), d) == known.end() || d == "pc")
-            throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "unsupported domain '" + d + "'");
+            throw volmap::Error(volmap::ErrorKind::BadInput, "unsupported domain '" + d + "'");
           domains.push_back(d);
         }
     }
@@ -216,11 +218,11 @@ int main(int argc, char** argv) {
       list.push_back({{"name", o.name}, {"added", o.ok}, {"reason", o.reason}, {"passes", o.refinement_passes}});
     }
     volmap::write_text_atomically((fs::path(dataset_dir) / (group + "_log.txt")).string(), log.str());
-    if (json)
-      std::cout << nlohmann::json{{"ok", true}, {"group", group}, {"added", added}, {"surfaces", list}}.dump() << "\n";
+    const int code = added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+    if (json) return volmap_tools::print_json({{"group", group}, {"added", added}, {"surfaces", list}}, code);
     else
       std::cout << group << ": " << added << "/" << surfaces.size() << " surfaces added to " << dataset_dir << " (log "
                 << (fs::path(dataset_dir) / (group + "_log.txt")).string() << ")\n";
-    return added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+    return code;
   }, &json);
 }
