@@ -2,6 +2,7 @@
 // The G1 success table is produced by bench/run_map_g1.sh + bench/summarise_map_g1.py (see there).
 #include <benchmark/benchmark.h>
 
+#include <volmap/core/local_tables.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/ffm.hpp>
 
@@ -43,7 +44,7 @@ void BM_LinkKernelLP(benchmark::State& state) {
   // The link of the centre vertex of a 2×2×2 Kuhn grid (24 triangles).
   const Grid g = kuhn(2);
   std::vector<double> tri;
-  static const int F[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+  const auto& F = volmap::kTetFace;
   for (std::size_t t = 0; t < g.tets.size() / 4; ++t)
     for (int i = 0; i < 4; ++i)
       if (g.tets[4 * t + i] == 13)

@@ -7,7 +7,7 @@
 // 56³·6 = 1 053 696 tets (uint32 ids, xyz interleaved), clean, with half of it flattened onto z = c
 // (zero-column shortcut) and with half of it flattened onto a tilted plane (exact L3 path).
 #include <benchmark/benchmark.h>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include "../predicates/testing/oracle.hpp"
 

@@ -1,6 +1,6 @@
 // libFuzzer target: the batch orientation predicate on arbitrary bit patterns. Non-finite input must
 // be reported (!ok), never signed; finite input must agree with the exact rational evaluation.
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <cmath>
 #include <cstdint>

@@ -27,7 +27,7 @@
 #include <volmap/check/map_check.hpp>
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 #include <volmap/volume/volume_map.hpp>
 
 #include <cstdio>

@@ -5,7 +5,7 @@
 // Sign conventions as in <volmap/predicates.hpp>. Inputs must be finite.
 #pragma once
 
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 namespace volmap::detail {
 

@@ -123,6 +123,21 @@ inline int sum_of_squares(double a, double b, double* h) {
   return expansion_sum(x, 2, y, 2, h);
 }
 
+// det[a; b; c] of three rows (ax ay az), (bx by bz), (cx cy cz) exactly, up to 24 components:
+// az·(bx·cy − cx·by) + bz·(cx·ay − ax·cy) + cz·(ax·by − bx·ay).
+inline int det3_expansion(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
+                          double cz, double* out) {
+  double m[4], s1[8], s2[8], s3[8], t16[16];
+  int lm = cross_diff(bx, cy, cx, by, m);
+  const int l1 = scale_expansion(m, lm, az, s1);
+  lm = cross_diff(cx, ay, ax, cy, m);
+  const int l2 = scale_expansion(m, lm, bz, s2);
+  lm = cross_diff(ax, by, bx, ay, m);
+  const int l3 = scale_expansion(m, lm, cz, s3);
+  const int l16 = expansion_sum(s1, l1, s2, l2, t16);
+  return expansion_sum(t16, l16, s3, l3, out);
+}
+
 inline int expansion_sign(const double* e, int len) { return (e[len - 1] > 0.0) - (e[len - 1] < 0.0); }
 inline double expansion_estimate(const double* e, int len) {
   double s = 0.0;

@@ -113,20 +113,6 @@ __attribute__((noinline, cold)) int orient2d_slow(const double* a, const double*
 
 // ---------------------------------------------------------------------------------------------
 // orient3d
-// Exact determinant of nine (exact) differences as an expansion of up to 24 components.
-int orient3d_diff_expansion(double adx, double ady, double adz, double bdx, double bdy, double bdz, double cdx,
-                            double cdy, double cdz, double* out) {
-  double m[4], s1[8], s2[8], s3[8], t16[16];
-  int lm = cross_diff(bdx, cdy, cdx, bdy, m);
-  const int l1 = scale_expansion(m, lm, adz, s1);
-  lm = cross_diff(cdx, ady, adx, cdy, m);
-  const int l2 = scale_expansion(m, lm, bdz, s2);
-  lm = cross_diff(adx, bdy, bdx, ady, m);
-  const int l3 = scale_expansion(m, lm, cdz, s3);
-  const int l16 = expansion_sum(s1, l1, s2, l2, t16);
-  return expansion_sum(t16, l16, s3, l3, out);
-}
-
 // Exact orient3d = det4[p_i 1] from raw coordinates:
 //   za·(bc − bd + cd) − zb·(ac − ad + cd) + zc·(ab − ad + bd) − zd·(ab − ac + bc),
 // with pq = px·qy − py·qx (Laplace expansion along the x,y columns).
@@ -179,7 +165,7 @@ int orient3d_exact_tail(const double* a, const double* b, const double* c, const
   two_diff(c[1], d[1], cdy, cdyt);
   two_diff(c[2], d[2], cdz, cdzt);
   double e[24];
-  const int n = orient3d_diff_expansion(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz, e);
+  const int n = det3_expansion(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz, e);
   if (adxt == 0.0 && adyt == 0.0 && adzt == 0.0 && bdxt == 0.0 && bdyt == 0.0 && bdzt == 0.0 && cdxt == 0.0 &&
       cdyt == 0.0 && cdzt == 0.0)
     return expansion_sign(e, n);
@@ -775,6 +761,26 @@ TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const s
                             std::size_t num_tets, std::int8_t* signs) {
   VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_tets(xyz, num_vertices, tets, num_tets, signs));
   return batch_kernel(orient3d_batch_filter(xyz, num_vertices), xyz, num_vertices, tets, num_tets, signs);
+}
+
+// The certification count: orient3d <= 0, refused input counting as all tets non-positive.
+std::size_t count_nonpositive(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                              std::size_t num_tets, std::int8_t* signs) {
+  const TetSignCounts c = orient3d_tets(xyz, num_vertices, tets, num_tets, signs);
+  if (c.ok) return c.zero + c.negative;
+  if (signs) std::fill(signs, signs + num_tets, std::int8_t(0));
+  return num_tets;
+}
+
+std::vector<std::uint32_t> nonpositive_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                                            std::size_t num_tets) {
+  std::vector<std::int8_t> signs(num_tets);
+  const std::size_t bad = count_nonpositive(xyz, num_vertices, tets, num_tets, signs.data());
+  std::vector<std::uint32_t> ids;
+  ids.reserve(bad);
+  for (std::size_t t = 0; t < num_tets; ++t)
+    if (signs[t] <= 0) ids.push_back(static_cast<std::uint32_t>(t));
+  return ids;
 }
 
 }  // namespace volmap

@@ -109,6 +109,36 @@ int insphere(const double* a, const double* b, const double* c, const double* d,
   return det_sign<T>(p, 5, 3, true);
 }
 
+// Exact tests built on the predicates: point equality, 3D collinearity ((b−a)×(c−a) = 0) and the
+// sign of Σ det[a; b; c] over triangles (xyz: 3 doubles per vertex, tris: 3 ids per triangle).
+inline bool points_equal(const double* p, const double* q) {
+  const DefaultFpEnvironment environment;
+  for (int k = 0; k < 3; ++k)
+    if (std::isnan(p[k]) || Q(p[k]) != Q(q[k])) return false;
+  return true;
+}
+inline bool collinear(const double* a, const double* b, const double* c) {
+  const DefaultFpEnvironment environment;
+  Q u[3], v[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = Q(b[k]) - Q(a[k]);
+    v[k] = Q(c[k]) - Q(a[k]);
+  }
+  return u[1] * v[2] == u[2] * v[1] && u[2] * v[0] == u[0] * v[2] && u[0] * v[1] == u[1] * v[0];
+}
+inline int enclosed_volume_sign(const double* xyz, const std::uint32_t* tris, std::size_t num_tris) {
+  const DefaultFpEnvironment environment;
+  Q sum = 0;
+  for (std::size_t t = 0; t < num_tris; ++t) {
+    Q m[9];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) m[3 * i + k] = Q(xyz[3 * std::size_t(tris[3 * t + i]) + k]);
+    const int cols[3] = {0, 1, 2};
+    sum += laplace_det(m, 3, 3, cols);
+  }
+  return sign(sum);
+}
+
 // Naive double determinants (Shewchuk's fast expressions, no filter): the "what goes wrong" baseline.
 inline double naive_orient2d(const double* a, const double* b, const double* c) {
   return (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);

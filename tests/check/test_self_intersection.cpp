@@ -3,7 +3,7 @@
 // enumerating basic solutions), plus the accelerated driver against brute force over all pairs.
 #include <doctest/doctest.h>
 #include <volmap/core/error.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 #include <volmap/check/self_intersection.hpp>
 
 #include <algorithm>

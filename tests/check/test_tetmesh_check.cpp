@@ -309,7 +309,7 @@ TEST_CASE("random tet soups (non-manifold, degenerate, duplicated): reported, ne
     const auto& hfs = r.topology.boundary_half_faces;
     std::vector<std::uint32_t> tris;
     for (std::uint32_t hf : hfs)
-      for (int k = 0; k < 3; ++k) tris.push_back(m.tets[4 * (hf / 4) + volmap::kTetFaceLocal[hf % 4][k]]);
+      for (int k = 0; k < 3; ++k) tris.push_back(m.tets[4 * (hf / 4) + volmap::kTetFace[hf % 4][k]]);
     std::size_t brute = 0;
     const std::size_t n = hfs.size();
     std::vector<char> degenerate(n);

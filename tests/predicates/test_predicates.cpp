@@ -2,7 +2,7 @@
 // oracle of predicates/testing/oracle.hpp. Orientation convention: Shewchuk's (orient3d > 0 for
 // VOLMAP-positive tets). Randomised 10^6-case cross-checks live in test_predicates_random.cpp.
 #include <doctest/doctest.h>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include "../../predicates/testing/oracle.hpp"
 

@@ -28,12 +28,6 @@ inline std::vector<std::uint8_t> grid_boundary_flags(int n) {
   return b;
 }
 
-// Exact number of tets with orient3d <= 0.
-inline std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-
 // Boundary mapped by an orientation-preserving affine map; interior moved randomly by ±amount.
 inline std::vector<double> scrambled_target(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& bnd, unsigned seed, double amount) {
   std::mt19937 rng(seed);

@@ -31,11 +31,6 @@
 
 namespace {
 
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-
 std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const volmap::TetMeshData& m) {
   std::vector<std::array<std::uint32_t, 3>> out;
   for (auto hf : volmap::boundary_half_faces(m)) {
@@ -63,8 +58,8 @@ void check_refinement(const volmap::TetMeshData& before, const std::vector<doubl
       for (int i = 0; i < 3; ++i) CHECK(target_after[3 * v + i] == target_before[3 * v + i]);
   }
   for (std::size_t v = before.num_vertices(); v < after.num_vertices(); ++v) CHECK(bnd_after[v] == 0);
-  CHECK(exact_bad(after.xyz, after.tets) == 0);
-  CHECK(exact_bad(target_after, after.tets) == 0);
+  CHECK(volmap::count_nonpositive(after.xyz, after.tets) == 0);
+  CHECK(volmap::count_nonpositive(target_after, after.tets) == 0);
   CHECK(boundary_triangles(after) == boundary_triangles(before));
   CHECK(after.tet_labels.size() == after.num_tets());
   const auto report = volmap::check_tet_mesh(after);
@@ -97,7 +92,7 @@ TEST_CASE("cone repair: one inverted vertex star in a Kuhn grid is repaired with
   const auto& [m0, bnd0, target0] = std::tie(c.m0, c.bnd0, c.target0);
   const int v = grid_id(n, 2, 2, 2);
   for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;  // past its neighbours (spacing 0.25): star inverted
-  const std::size_t bad0 = exact_bad(target0, m0.tets);
+  const std::size_t bad0 = volmap::count_nonpositive(target0, m0.tets);
   REQUIRE(bad0 > 0);
   const auto r = c.repair();
   const auto& [m, bnd, target] = std::tie(c.m, c.bnd, c.target);
@@ -129,14 +124,14 @@ TEST_CASE("cone repair: a free vertex pushed across a concave boundary valley is
   const auto bnd0 = map_test::grid_boundary_flags(n);
   auto target0 = m0.xyz;
   for (std::size_t u = 0; u < m0.num_vertices(); ++u) target0[3 * u + 2] *= 1 + 2 * std::abs(target0[3 * u] - 0.5);
-  REQUIRE(exact_bad(target0, m0.tets) == 0);
+  REQUIRE(volmap::count_nonpositive(target0, m0.tets) == 0);
   const int v = grid_id(n, 5, 3, 3);  // (0.5, 0.5, 5/6): the first index runs along z
   REQUIRE(m0.xyz[3 * v + 0] == doctest::Approx(0.5));
   REQUIRE(m0.xyz[3 * v + 1] == doctest::Approx(0.5));
   REQUIRE(m0.xyz[3 * v + 2] == doctest::Approx(5.0 / 6.0));
   target0[3 * v + 0] += 0.4;
   target0[3 * v + 2] += 1.0;
-  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
   for (bool aimed : {false, true}) {
     auto m = m0;
     auto bnd = bnd0;
@@ -159,7 +154,7 @@ TEST_CASE("cone repair: the only interior vertex of a convex grid becomes the ap
   target0[3 * v + 0] = 0.95;  // near a corner: part of its star inverted
   target0[3 * v + 1] = 0.95;
   target0[3 * v + 2] = 0.05;
-  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
   auto m = m0;
   auto bnd = bnd0;
   auto target = target0;
@@ -180,7 +175,7 @@ TEST_CASE("cone repair: an exhausted time limit leaves the mesh and map exactly 
   auto target0 = m0.xyz;
   for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3)})
     for (int i = 0; i < 3; ++i) target0[3 * c + i] += 0.3;
-  REQUIRE(exact_bad(target0, m0.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
   auto m = m0;
   auto bnd = bnd0;
   auto target = target0;
@@ -197,7 +192,7 @@ TEST_CASE("cone repair: an exhausted time limit leaves the mesh and map exactly 
   // The same state without the limit is repaired.
   const auto r2 = volmap::cone_repair(m, bnd, target);
   CHECK(r2.failed_clusters == 0);
-  CHECK(exact_bad(target, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(target, m.tets) == 0);
 }
 
 TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired") {
@@ -208,7 +203,7 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
   std::uniform_real_distribution<double> u(-0.25, 0.25);
   for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3), grid_id(n, 2, 5, 4), grid_id(n, 3, 3, 1), grid_id(n, 5, 5, 5)})
     for (int i = 0; i < 3; ++i) gc.target0[3 * c + i] += u(rng);
-  const std::size_t bad0 = exact_bad(target0, m0.tets);
+  const std::size_t bad0 = volmap::count_nonpositive(target0, m0.tets);
   REQUIRE(bad0 > 0);
   const auto r = gc.repair();
   const auto& [m, bnd, target] = std::tie(gc.m, gc.bnd, gc.target);
@@ -249,7 +244,7 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     auto bnd = map_test::grid_boundary_flags(n);
     auto target0 = m0.xyz;
     for (int i = 0; i < 3; ++i) target0[i] = 0.9;  // corner (0,0,0) pushed through the cube
-    REQUIRE(exact_bad(target0, m0.tets) > 0);
+    REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
     auto m = m0;
     auto target = target0;
     const auto bnd0 = bnd;
@@ -292,8 +287,8 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     const auto& [m0, m, target] = std::tie(gc.m0, gc.m, gc.target);
     // Whatever was applied stayed within the budget and valid; the rest is left as it was.
     CHECK(long(m.num_tets()) - long(m0.num_tets()) <= 1);
-    CHECK(exact_bad(m.xyz, m.tets) == 0);
-    if (r.failed_clusters == 0) CHECK(exact_bad(target, m.tets) == 0);
+    CHECK(volmap::count_nonpositive(m.xyz, m.tets) == 0);
+    if (r.failed_clusters == 0) CHECK(volmap::count_nonpositive(target, m.tets) == 0);
   }
 }
 

@@ -70,9 +70,8 @@ TEST_CASE("strict_kernel_point under FTZ|DAZ returns an exactly verified point a
   // developer guide's outward faces, each with orient3d(face, opposite vertex) > 0).
   const double v[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}};
   REQUIRE(volmap::orient3d(v[0], v[1], v[2], v[3]) > 0);
-  const int faces[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
   std::vector<double> tri;
-  for (const auto& f : faces)
+  for (const auto& f : volmap::kTetFace)
     for (int k : f) tri.insert(tri.end(), v[k], v[k] + 3);
   double q[3] = {0, 0, 0};
   bool found = false;

@@ -1,23 +1,17 @@
 // Strict-kernel LP (B1 of mapping.md §7) and the link-kernel relocation pre-step.
 #include <doctest/doctest.h>
 
+#include <volmap/core/local_tables.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
 
-namespace {
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-}  // namespace
-
 TEST_CASE("strict kernel of a tet's outward faces is its interior; reversed faces have none") {
   // VOLMAP-positive tet: orient3d(v0,v1,v2,v3) > 0.
   double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   if (volmap::orient3d(v[0], v[1], v[2], v[3]) < 0) std::swap(v[2], v[3]);
-  static const int F[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+  const auto& F = volmap::kTetFace;
   std::vector<double> tri, rev;
   for (const auto& f : F) {
     for (int j = 0; j < 3; ++j)
@@ -38,12 +32,12 @@ TEST_CASE("link-kernel relocation repairs a vertex pushed out of its star, never
   // The only interior vertex is (0.5,0.5,0.5) = id 13; push it outside the cube.
   REQUIRE(!bnd[13]);
   X[3 * 13] = 1.7;
-  const auto before = exact_bad(X, m.tets);
+  const auto before = volmap::count_nonpositive(X, m.tets);
   REQUIRE(before > 0);
   auto r = volmap::relocate_into_link_kernels(m.tets, bnd, X, 5);
   CHECK(r.nonpositive_before == before);
   CHECK(r.nonpositive_after == 0);
-  CHECK(exact_bad(X, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(X, m.tets) == 0);
   for (std::size_t v = 0; v < bnd.size(); ++v)
     if (bnd[v])
       for (int i = 0; i < 3; ++i) CHECK(X[3 * v + i] == m.xyz[3 * v + i]);

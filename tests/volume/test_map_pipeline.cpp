@@ -28,11 +28,6 @@
 
 namespace {
 
-std::size_t exact_bad(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  auto c = volmap::orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  return c.zero + c.negative;
-}
-
 volmap::BoundaryMap map_of(const std::vector<std::uint8_t>& bnd, const std::vector<double>& target) {
   volmap::BoundaryMap m;
   for (std::size_t v = 0; v < bnd.size(); ++v)
@@ -118,7 +113,7 @@ TEST_CASE("B0: splitting the chord diagonal keeps ids, appends one interior vert
   CHECK(bnd[8] == 0);
   for (std::size_t i = 0; i < 24; ++i) CHECK(m.xyz[i] == before.xyz[i]);
   CHECK(m.xyz[24] == 0.5);
-  CHECK(exact_bad(m.xyz, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(m.xyz, m.tets) == 0);
   // Volume is preserved (children tile the parents).
   auto vol = [](const volmap::TetMeshData& mm) {
     double s = 0;
@@ -148,7 +143,7 @@ TEST_CASE("B0: face split 1->3 turns each of the two tets into three exactly pos
   auto r = volmap::split_chords(m, bnd, {}, {f.chord_faces[0]});
   CHECK(r.faces_split == 1);
   CHECK(m.num_tets() == 6 + 4);
-  CHECK(exact_bad(m.xyz, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(m.xyz, m.tets) == 0);
 }
 
 TEST_CASE("pipeline: scrambled grid interior, affine boundary -> certified, boundary bit-exact") {
@@ -166,7 +161,7 @@ TEST_CASE("pipeline: scrambled grid interior, affine boundary -> certified, boun
     opt.method = method;
     auto r = volmap::compute_volume_map(m, map, opt);
     CHECK(r.certified);
-    CHECK(exact_bad(r.target_xyz, r.source.tets) == 0);
+    CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
     for (std::size_t k = 0; k < map.size(); ++k)
       for (int i = 0; i < 3; ++i) CHECK(r.target_xyz[3 * map.vids[k] + i] == map.xyz[3 * k + i]);
   }
@@ -181,10 +176,10 @@ TEST_CASE("TLC untangles scrambled interior vertices (exact stop)") {
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
     if (!bnd[v])
       for (int i = 0; i < 3; ++i) target[3 * v + i] += u(rng);
-  REQUIRE(exact_bad(target, m.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(target, m.tets) > 0);
   auto r = volmap::tlc_untangle(m.xyz, m.tets, bnd, target);
   CHECK(r.certified);
-  CHECK(exact_bad(target, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(target, m.tets) == 0);
 }
 
 TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, the mapper certifies") {
@@ -198,7 +193,7 @@ TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, th
   for (auto v : volmap::boundary_vertex_ids(src)) bnd[v] = 1;
   auto tutte = img.xyz;
   volmap::solve_uniform_laplacian(bnd.size(), volmap::unique_tet_edges(src), bnd, tutte);
-  CHECK(exact_bad(tutte, src.tets) > 0);  // the counterexample: uniform Tutte folds
+  CHECK(volmap::count_nonpositive(tutte, src.tets) > 0);  // the counterexample: uniform Tutte folds
   const auto map = map_of(bnd, img.xyz);
   volmap::VolumeMapOptions opt;
   opt.allow_refinement = false;
@@ -231,7 +226,7 @@ TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the 
     bnd[h] = 1;
   }
   REQUIRE(m.num_tets() == 162);
-  CHECK(exact_bad(init, m.tets) == 36);
+  CHECK(volmap::count_nonpositive(init, m.tets) == 36);
   auto f = volmap::analyze_feasibility(m, bnd, init);
   CHECK(f.chord_edges.size() == 24);
   CHECK(f.chord_faces.size() == 66);
@@ -240,7 +235,7 @@ TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the 
   volmap::VolumeMapOptions fixed;
   fixed.allow_refinement = false;
   auto r0 = volmap::compute_volume_map(m, map, fixed);
-  CHECK(r0.certified == (exact_bad(r0.target_xyz, r0.source.tets) == 0));
+  CHECK(r0.certified == (volmap::count_nonpositive(r0.target_xyz, r0.source.tets) == 0));
   MESSAGE("TLC cube, fixed connectivity: certified " << r0.certified << ", non-positive " << r0.nonpositive
           << "; blocking chord edges " << f.blocking_chord_edges.size() << " faces " << f.blocking_chord_faces.size()
           << " fixed non-positive tets " << f.fixed_nonpositive_tets.size());
@@ -248,8 +243,8 @@ TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the 
   volmap::VolumeMapOptions refine;
   auto r1 = volmap::compute_volume_map(m, map, refine);
   MESSAGE("TLC cube, with refinement: certified " << r1.certified << ", tets " << r1.source.num_tets() << ", by " << r1.certified_by);
-  CHECK(exact_bad(r1.source.xyz, r1.source.tets) == 0);  // the refined source stays valid
-  CHECK(r1.certified == (exact_bad(r1.target_xyz, r1.source.tets) == 0));
+  CHECK(volmap::count_nonpositive(r1.source.xyz, r1.source.tets) == 0);  // the refined source stays valid
+  CHECK(r1.certified == (volmap::count_nonpositive(r1.target_xyz, r1.source.tets) == 0));
 }
 
 TEST_CASE("volmap-map: no false success when a fixed all-boundary tet is inverted (exit 1), bad input exit 2") {
@@ -298,7 +293,7 @@ TEST_CASE("G1 bone and duck onto the five domains" * doctest::test_suite("long")
       auto r = volmap::compute_volume_map(src, map, opt);
       MESSAGE(name << " " << dom << ": certified " << r.certified << " non-positive " << r.nonpositive << " by "
               << r.certified_by << " in " << r.seconds << " s");
-      CHECK(r.certified == (exact_bad(r.target_xyz, r.source.tets) == 0));  // never a false success
+      CHECK(r.certified == (volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0));  // never a false success
       ++pairs;
       certified += r.certified;
     }

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <random>
 
-using map_test::exact_bad;
 using map_test::scrambled_target;
 
 TEST_CASE("chi is the smooth positive part, cancellation-free for very negative D") {
@@ -35,7 +34,7 @@ TEST_CASE("FFM gradient matches central finite differences (both reference shape
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
   auto target = scrambled_target(m, bnd, 7, 0.3);
-  REQUIRE(exact_bad(target, m.tets) > 0);  // some tets are tangled: exercises the D < 0 branch
+  REQUIRE(volmap::count_nonpositive(target, m.tets) > 0);  // some tets are tangled: exercises the D < 0 branch
   for (auto ref : {volmap::ReferenceShape::RegularTet, volmap::ReferenceShape::RestShape}) {
     volmap::FfmEnergy E(m.xyz, m.tets, bnd, target, ref, 0.5);
     REQUIRE(E.num_variables() == 3 * 8);
@@ -79,20 +78,20 @@ TEST_CASE("FFM untangles scrambled interior vertices and the exact check certifi
   for (unsigned seed : {1u, 2u, 3u}) {
     auto target = scrambled_target(m, bnd, seed, 0.8);
     const auto before = target;
-    REQUIRE(exact_bad(target, m.tets) > 0);
+    REQUIRE(volmap::count_nonpositive(target, m.tets) > 0);
     volmap::FfmOptions options;
     options.solver = solver;  // L-BFGS and Newton (SPD-projected Hessians) inner solvers
     auto r = volmap::ffm_untangle(m.xyz, m.tets, bnd, target, options);
     MESSAGE("solver " << int(solver) << " outer " << r.outer_iterations << " lbfgs " << r.lbfgs_iterations << " evals " << r.evaluations << " eps " << r.final_epsilon << " dmin " << r.min_det);
     CHECK(r.certified);
     CHECK(r.nonpositive == 0);
-    CHECK(exact_bad(target, m.tets) == 0);
+    CHECK(volmap::count_nonpositive(target, m.tets) == 0);
     for (std::size_t v = 0; v < m.num_vertices(); ++v)
       if (bnd[v])
         for (int i = 0; i < 3; ++i) CHECK(target[3 * v + i] == before[3 * v + i]);  // bit-exact boundary
     // Quality pass keeps validity.
     auto q = volmap::ffm_quality_pass(m.xyz, m.tets, bnd, target, volmap::ReferenceShape::RegularTet, 200, 10);
-    CHECK(exact_bad(target, m.tets) == 0);
+    CHECK(volmap::count_nonpositive(target, m.tets) == 0);
     CHECK(q.energy_after <= q.energy_before);
   }
 }

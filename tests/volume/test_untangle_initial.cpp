@@ -22,7 +22,6 @@
 #include <random>
 #include <sys/wait.h>
 
-using map_test::exact_bad;
 using map_test::scrambled_target;
 
 namespace {
@@ -39,7 +38,7 @@ TEST_CASE("FFM Hessian matches finite differences of the gradient and its projec
   auto m = map_test::kuhn_grid(n);
   auto bnd = map_test::grid_boundary_flags(n);
   auto target = scrambled_target(m, bnd, 11, 0.3);
-  REQUIRE(exact_bad(target, m.tets) > 0);  // tangled: the D < 0 branch of χ and its derivatives
+  REQUIRE(volmap::count_nonpositive(target, m.tets) > 0);  // tangled: the D < 0 branch of χ and its derivatives
   for (auto ref : {volmap::ReferenceShape::RegularTet, volmap::ReferenceShape::RestShape}) {
     volmap::FfmEnergy E(m.xyz, m.tets, bnd, target, ref, 0.5);
     const std::size_t nv = E.num_variables();
@@ -86,7 +85,7 @@ TEST_CASE("local FFM fixes one displaced vertex and moves nothing outside its re
   REQUIRE(!bnd[v]);
   target[3 * v] += 0.3;
   target[3 * v + 1] += 0.25;
-  const std::size_t bad_before = exact_bad(target, m.tets);
+  const std::size_t bad_before = volmap::count_nonpositive(target, m.tets);
   REQUIRE(bad_before > 0);
   const auto before = target;
   volmap::LocalUntangleOptions lo;
@@ -94,7 +93,7 @@ TEST_CASE("local FFM fixes one displaced vertex and moves nothing outside its re
   auto r = volmap::ffm_local_untangle(m.xyz, m.tets, bnd, target, lo);
   CHECK(r.nonpositive_before == bad_before);
   CHECK(r.nonpositive_after == 0);
-  CHECK(exact_bad(target, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(target, m.tets) == 0);
   CHECK(r.largest_region_tets < m.num_tets());
   // Vertices farther than the grown region (Chebyshev grid distance > 2 from (3,3,3)) are untouched.
   for (int i = 0; i <= n; ++i)
@@ -115,7 +114,7 @@ TEST_CASE("FFM warm-start epsilon certifies a nearly valid map") {
   const std::uint32_t v = std::uint32_t((2 * (n + 1) + 2) * (n + 1) + 2);
   target[3 * v] += 0.25;
   target[3 * v + 2] += 0.12;
-  REQUIRE(exact_bad(target, m.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(target, m.tets) > 0);
   auto cold = target, warm = target;
   volmap::FfmOptions o;
   const auto rc = volmap::ffm_untangle(m.xyz, m.tets, bnd, cold, o);
@@ -123,7 +122,7 @@ TEST_CASE("FFM warm-start epsilon certifies a nearly valid map") {
   const auto rw = volmap::ffm_untangle(m.xyz, m.tets, bnd, warm, o);
   CHECK(rc.certified);
   CHECK(rw.certified);
-  CHECK(exact_bad(warm, m.tets) == 0);
+  CHECK(volmap::count_nonpositive(warm, m.tets) == 0);
   MESSAGE("cold outer " << rc.outer_iterations << " warm outer " << rw.outer_iterations << " final eps " << rw.final_epsilon);
 }
 
@@ -138,7 +137,7 @@ TEST_CASE("volmap-map --initial: GalaxyMaps 7-vertex example certifies and a wro
   const auto dir = volmap_test::scratch_dir("untangle_initial");
   const auto input = volmap::read_tet_mesh(object.string());
   const auto initial = volmap::read_tet_mesh(parameter.string());
-  REQUIRE(exact_bad(initial.xyz, initial.tets) == 2);  // the upstream initial map: 2 flipped tets
+  REQUIRE(volmap::count_nonpositive(initial.xyz, initial.tets) == 2);  // the upstream initial map: 2 flipped tets
   const auto bverts = volmap::boundary_vertex_ids(input);
   REQUIRE(bverts.size() == 5);
   const std::string out = (dir / "out.mesh").string();
@@ -148,7 +147,7 @@ TEST_CASE("volmap-map --initial: GalaxyMaps 7-vertex example certifies and a wro
   CHECK(run(base + "- " + out + " --initial " + parameter.string()) == 0);
   auto written = volmap::read_medit(out);
   CHECK(written.tets == input.tets);
-  CHECK(exact_bad(written.xyz, written.tets) == 0);
+  CHECK(volmap::count_nonpositive(written.xyz, written.tets) == 0);
   for (auto v : bverts)
     for (int c = 0; c < 3; ++c) CHECK(written.xyz[3 * v + c] == initial.xyz[3 * v + c]);
 
@@ -211,7 +210,7 @@ TEST_CASE("compute_volume_map starts from the given initial map and checks its b
     for (int c = 0; c < 3; ++c) map.xyz[3 * k + c] = o.initial_xyz[3 * std::size_t(map.vids[k]) + c];
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
     if (!bnd[v]) o.initial_xyz[3 * v] += 0.9;  // push every interior vertex across its neighbours
-  REQUIRE(exact_bad(o.initial_xyz, m.tets) > 0);
+  REQUIRE(volmap::count_nonpositive(o.initial_xyz, m.tets) > 0);
   r = volmap::compute_volume_map(m, map, o);
   CHECK(r.certified);
   CHECK(r.stages.at(1).name == "initial");
@@ -246,14 +245,14 @@ TEST_CASE("TLC example cube from its tangled initial map certifies with a bit-ex
     for (int c = 0; c < 3; ++c) map.xyz.push_back(init[3 * std::size_t(h) + c]);
   }
   REQUIRE(rest.num_tets() == 162);
-  REQUIRE(exact_bad(init, rest.tets) == 36);
+  REQUIRE(volmap::count_nonpositive(init, rest.tets) == 36);
   volmap::VolumeMapOptions o;
   o.initial_xyz = init;
   o.quality_pass = false;
   const auto r = volmap::compute_volume_map(rest, map, o);
   MESSAGE("refined " << r.refined << " tets " << r.source.num_tets() << " certified " << r.certified << " by " << r.certified_by);
-  CHECK(exact_bad(r.source.xyz, r.source.tets) == 0);  // the refined source stays valid
-  CHECK(r.certified == (exact_bad(r.target_xyz, r.source.tets) == 0));
+  CHECK(volmap::count_nonpositive(r.source.xyz, r.source.tets) == 0);  // the refined source stays valid
+  CHECK(r.certified == (volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0));
   CHECK(r.stages.at(r.refined ? 2 : 1).name == "initial");
   for (std::size_t k = 0; k < map.size(); ++k)
     for (int c = 0; c < 3; ++c) CHECK(r.target_xyz[3 * std::size_t(map.vids[k]) + c] == map.xyz[3 * k + c]);

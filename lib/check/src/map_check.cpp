@@ -339,8 +339,7 @@ MapCheckReport check_map(const TetMeshData& in, const TetMeshData& out, const Bo
       if (v >= nv) throw Error(ErrorKind::BadInput, "boundary map vertex id " + std::to_string(v) + " is out of range");
       const double* p = &out.xyz[3 * v];
       const double* q = &boundary->xyz[3 * k];
-      // Value equality of doubles (exact; +0 and -0 are the same point).
-      if (!(p[0] == q[0] && p[1] == q[1] && p[2] == q[2])) {
+      if (!points_equal(p, q)) {  // exact value equality, +0 == -0, also under DAZ
         ++report.boundary_mismatches;
         if (report.first_boundary_mismatches.size() < options.max_reported_bad) {
           report.first_boundary_mismatches.push_back(v);

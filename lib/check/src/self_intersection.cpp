@@ -394,7 +394,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   });
   for (std::size_t i = 1; i < used.size(); ++i) {
     const double *p = xyz + 3 * std::size_t(used[i - 1]), *q = xyz + 3 * std::size_t(used[i]);
-    if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
+    if (points_equal(p, q)) {
       ++result.coincident_vertices;
       if (result.first_coincident.size() < cap) result.first_coincident.emplace_back(used[i - 1], used[i]);
     }

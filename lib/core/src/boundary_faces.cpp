@@ -43,7 +43,7 @@ std::vector<std::uint64_t> boundary_half_faces(const TetMeshData& mesh) {
   std::vector<std::size_t> start(nv + 1, 0);
   for (std::size_t hf = 0; hf < nf; ++hf) {
     const std::uint32_t* t = tets + (hf & ~std::size_t(3));
-    const std::uint8_t* l = kTetFaceLocal[hf & 3];
+    const std::uint8_t* l = kTetFace[hf & 3];
     std::uint32_t lo, mid, hi;
     sorted_triple(t[l[0]], t[l[1]], t[l[2]], lo, mid, hi);
     ++start[lo + 1];
@@ -54,7 +54,7 @@ std::vector<std::uint64_t> boundary_half_faces(const TetMeshData& mesh) {
     std::vector<std::size_t> fill(start.begin(), start.end() - 1);
     for (std::size_t hf = 0; hf < nf; ++hf) {
       const std::uint32_t* t = tets + (hf & ~std::size_t(3));
-      const std::uint8_t* l = kTetFaceLocal[hf & 3];
+      const std::uint8_t* l = kTetFace[hf & 3];
       std::uint32_t lo, mid, hi;
       sorted_triple(t[l[0]], t[l[1]], t[l[2]], lo, mid, hi);
       keys[fill[lo]++] = FaceKey{(std::uint64_t(mid) << 32) | hi, hf};

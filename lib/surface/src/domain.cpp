@@ -233,9 +233,13 @@ void finalize_domain(Domain& d, const std::string& source) {
     if (d.rotation[v].size() < 3)
       invalid(source, 0, "node " + std::to_string(v) + " has " + std::to_string(d.rotation[v].size()) +
                              " arcs (a polyhedral graph needs at least 3)");
+    if (points_equal(d.targets[v].data(), d.kernel.data()))
+      invalid(source, 0, "node " + std::to_string(v) + " coincides with the kernel point");
+    // The rest of this loop only orders the arcs by angle (double precision is enough for an order).
     Point3 r = sub(d.targets[v], d.kernel);
     const double rn = norm(r);
-    if (!(rn > 0)) invalid(source, 0, "node " + std::to_string(v) + " coincides with the kernel point");
+    if (!(rn > 0))
+      invalid(source, 0, "node " + std::to_string(v) + " is too close to the kernel point to order its arcs");
     r = {r[0] / rn, r[1] / rn, r[2] / rn};
     Point3 axis = std::fabs(r[0]) < 0.6 ? Point3{1, 0, 0} : Point3{0, 1, 0};
     Point3 e1 = cross(axis, r);

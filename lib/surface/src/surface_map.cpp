@@ -1,5 +1,5 @@
 // Surface mapping onto a base domain (see surface_map.hpp for the algorithm).
-// Conventions: boundary triangles are kept in the outward winding of their tet (kTetFaceLocal), so
+// Conventions: boundary triangles are kept in the outward winding of their tet (kTetFace), so
 // around a vertex v a triangle (v,x,y) turns counter-clockwise from x to y seen from outside, the same
 // sense as the domain's rotation system. Vertex ids are those of the tet mesh; split vertices are
 // appended. The working surface is a small flat structure (triangles + per-vertex triangle lists in
@@ -564,7 +564,7 @@ void Mapper::refine_tets(TetMeshData& out) const {
   for (std::size_t t = 0; t < out.num_tets(); ++t) {
     const std::uint32_t* q = &out.tets[4 * t];
     if (q[0] < nv0 && q[1] < nv0 && q[2] < nv0 && q[3] < nv0) continue;
-    if (orient3d_filtered(&out.xyz[3 * q[0]], &out.xyz[3 * q[1]], &out.xyz[3 * q[2]], &out.xyz[3 * q[3]]) <= 0)
+    if (orient3d(&out.xyz[3 * q[0]], &out.xyz[3 * q[1]], &out.xyz[3 * q[2]], &out.xyz[3 * q[3]]) <= 0)
       fail("splitting a boundary edge produced a non-positive tet " + std::to_string(t) + " (midpoint rounding)");
   }
 }
@@ -577,7 +577,7 @@ SurfaceMapResult Mapper::run() {
     const std::uint32_t* q = &mesh_.tets[4 * t];
     for (int k = 0; k < 4; ++k)
       if (q[k] >= nv0) throw Error(ErrorKind::BadInput, "", 0, "tet " + std::to_string(t) + " has an out-of-range vertex id");
-    if (orient3d_filtered(&mesh_.xyz[3 * q[0]], &mesh_.xyz[3 * q[1]], &mesh_.xyz[3 * q[2]], &mesh_.xyz[3 * q[3]]) <= 0)
+    if (orient3d(&mesh_.xyz[3 * q[0]], &mesh_.xyz[3 * q[1]], &mesh_.xyz[3 * q[2]], &mesh_.xyz[3 * q[3]]) <= 0)
       throw Error(ErrorKind::BadInput, "", 0,
                   "tet " + std::to_string(t) + " is not VOLMAP-positive (orient3d <= 0): flip or repair the mesh first");
   }
@@ -735,8 +735,8 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
     tris.push_back({f[0], f[1], f[2]});
   }
   auto cone = [&](const Tri& t) {
-    return orient3d_filtered(&out.map.xyz[3 * slot[t[0]]], &out.map.xyz[3 * slot[t[1]]], &out.map.xyz[3 * slot[t[2]]],
-                             centre.data());
+    return orient3d(&out.map.xyz[3 * slot[t[0]]], &out.map.xyz[3 * slot[t[1]]], &out.map.xyz[3 * slot[t[2]]],
+                    centre.data());
   };
   VertexTriangleLists vtris;  // built on the first non-positive cone
   bool have_vtris = false;

@@ -1,5 +1,5 @@
-// Exact surface-map check (see surface_map_check.hpp). Triangle signs: a double determinant with
-// Shewchuk's error bound decides almost every cone; the exact predicate settles the rest.
+// Exact surface-map check (see surface_map_check.hpp). Every cone sign is volmap::orient3d; exact
+// corner hits use volmap::points_equal.
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map_check.hpp>
@@ -12,29 +12,6 @@
 #include <vector>
 
 namespace volmap {
-
-int orient3d_filtered(const double* a, const double* b, const double* c, const double* d) {
-  // Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates"
-  // (1997), orient3d with o3derrboundA = (7 + 56 eps) eps, eps = 2^-53.
-  const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
-  const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
-  const double adz = a[2] - d[2], bdz = b[2] - d[2], cdz = c[2] - d[2];
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  constexpr double eps = 1.1102230246251565e-16;  // 2^-53
-  constexpr double bound = (7.0 + 56.0 * eps) * eps;
-  const double err = bound * permanent;
-  if (std::isfinite(det) && std::isfinite(err)) {
-    if (det > err) return 1;
-    if (-det > err) return -1;
-  }
-  return orient3d(a, b, c, d);
-}
 
 namespace {
 
@@ -110,8 +87,8 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
 
   for (auto hf : faces) {
     const auto tri = half_face_vertices(mesh, hf);
-    const int s = orient3d_filtered(&map.xyz[3 * slot[tri[0]]], &map.xyz[3 * slot[tri[1]]],
-                                    &map.xyz[3 * slot[tri[2]]], r.kernel.data());
+    const int s = orient3d(&map.xyz[3 * slot[tri[0]]], &map.xyz[3 * slot[tri[1]]], &map.xyz[3 * slot[tri[2]]],
+                           r.kernel.data());
     if (s > 0)
       ++r.positive;
     else if (s < 0)
@@ -166,7 +143,7 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
     for (const auto& t : domain->targets) {
       std::size_t hits = 0;
       for (std::size_t i = 0; i < map.size(); ++i)
-        hits += map.xyz[3 * i] == t[0] && map.xyz[3 * i + 1] == t[1] && map.xyz[3 * i + 2] == t[2];
+        hits += points_equal(&map.xyz[3 * i], t.data());
       r.corners_exact += hits == 1;
     }
     if (cones_ok && r.off_domain)

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -239,7 +240,7 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
         throw Error(ErrorKind::Failed, "TetGen returned a bad vertex id");
       q[k] = static_cast<std::uint32_t>(id);
     }
-    const int sgn = orient3d_filtered(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
+    const int sgn = orient3d(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
     if (sgn == 0) throw Error(ErrorKind::Failed, "TetGen produced a degenerate tet " + std::to_string(t));
     if (sgn < 0) {
       std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive

@@ -1,6 +1,6 @@
 // cone_repair.cpp — B1 of docs/mapping.md §7 (star-patch cone repair, original vertices kept), its
 // strict-kernel LP and the vertex-star pre-step.
-// Orientation: for an outward face (a,b,c) (kTetFaceLocal order of a VOLMAP-positive tet), a point q
+// Orientation: for an outward face (a,b,c) (kTetFace order of a VOLMAP-positive tet), a point q
 // is on the tet's side iff orient3d(a,b,c,q) > 0, i.e. n·(q − a) > 0 with n = (c−a)×(b−a).
 // The LP is a dense condensed-tableau simplex (Bland's rule) in 4 variables (q, s): maximise s
 // subject to n̂_F·(q − a_F) ≥ s for every face and q in the faces' bounding box; solved in double,
@@ -295,7 +295,7 @@ class ConeRepairer {
 
   Tri face(std::uint32_t t, int i) const {
     const std::uint32_t* tv = &src_.tets[4 * std::size_t(t)];
-    const std::uint8_t* l = kTetFaceLocal[i];
+    const std::uint8_t* l = kTetFace[i];
     return {tv[l[0]], tv[l[1]], tv[l[2]]};
   }
   const double* S(std::uint32_t v) const { return &src_.xyz[3 * std::size_t(v)]; }
@@ -686,7 +686,7 @@ class ConeRepairer {
       int zeros = 0;
       bool outside = false;
       for (int i = 0; i < 4 && !outside; ++i) {
-        const std::uint8_t* l = kTetFaceLocal[i];
+        const std::uint8_t* l = kTetFace[i];
         h.sign[i] = fp_.orient3d(S(tv[l[0]]), S(tv[l[1]]), S(tv[l[2]]), x);
         if (h.sign[i] < 0) outside = true;
         zeros += h.sign[i] == 0;
@@ -705,7 +705,7 @@ class ConeRepairer {
     double y[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     int carrier = 0;
     for (int i = 0; i < 4; ++i) {
-      const std::uint8_t* l = kTetFaceLocal[i];
+      const std::uint8_t* l = kTetFace[i];
       const double den = signed_volume(S(t0[l[0]]), S(t0[l[1]]), S(t0[l[2]]), S(t0[i]));
       const double lam = hits[best].sign[i] > 0 ? signed_volume(S(t0[l[0]]), S(t0[l[1]]), S(t0[l[2]]), x) / den : 0.0;
       for (int d = 0; d < 3; ++d) y[d] += lam * T(t0[i])[d];
@@ -721,7 +721,7 @@ class ConeRepairer {
       for (int i = 0; i < 4; ++i)
         if (h.sign[i] > 0) {
           const auto& tv = local[h.k].v;
-          const std::uint8_t* l = kTetFaceLocal[i];
+          const std::uint8_t* l = kTetFace[i];
           fresh.push_back({{tv[l[0]], tv[l[1]], tv[l[2]], u}, local[h.k].label, false});
           for (int k = 0; k < 3; ++k)
             for (int d = 0; d < 3; ++d) tri.push_back(T(tv[l[k]])[d]);
@@ -935,7 +935,7 @@ class ConeRepairer {
     keys.reserve(4 * live.size() + faces_.size());
     for (std::size_t k = 0; k < live.size(); ++k)
       for (int i = 0; i < 4; ++i) {
-        const std::uint8_t* l = kTetFaceLocal[i];
+        const std::uint8_t* l = kTetFace[i];
         keys.push_back({sorted({live[k].v[l[0]], live[k].v[l[1]], live[k].v[l[2]]}), 4 * k + i});
       }
     for (std::size_t f = 0; f < faces_.size(); ++f) keys.push_back({sorted(faces_[f].v), kRegionBit | f});
@@ -1038,10 +1038,7 @@ RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& te
     for (std::size_t s = 0; s < 4 * nt; ++s) slot[fill[tets[s]]++] = std::uint32_t(s);
   }
   std::vector<std::int8_t> sign(nt);
-  auto count_bad = [&] {
-    const TetSignCounts c = orient3d_tets(X.data(), nv, tets.data(), nt, sign.data());
-    return c.zero + c.negative;
-  };
+  auto count_bad = [&] { return count_nonpositive(X.data(), nv, tets.data(), nt, sign.data()); };
   res.nonpositive_before = count_bad();
   std::size_t bad = res.nonpositive_before;
   std::vector<double> tri;
@@ -1066,7 +1063,7 @@ RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& te
       for (std::uint32_t k = off[v]; k < off[v + 1]; ++k) {
         const std::uint32_t s = slot[k];
         const std::uint32_t* tv = &tets[4 * std::size_t(s / 4)];
-        const std::uint8_t* fl = kTetFaceLocal[s % 4];
+        const std::uint8_t* fl = kTetFace[s % 4];
         for (int j = 0; j < 3; ++j)
           for (int i = 0; i < 3; ++i) tri.push_back(X[3 * std::size_t(tv[fl[j]]) + i]);
       }

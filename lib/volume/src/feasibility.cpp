@@ -11,50 +11,6 @@
 
 namespace volmap {
 
-namespace {
-
-bool collinear_exact(const double* a, const double* b, const double* c) {
-  // Collinear in 3D iff all three coordinate-plane projections are collinear (exact orient2d).
-  const double a_xy[2] = {a[0], a[1]}, b_xy[2] = {b[0], b[1]}, c_xy[2] = {c[0], c[1]};
-  const double a_yz[2] = {a[1], a[2]}, b_yz[2] = {b[1], b[2]}, c_yz[2] = {c[1], c[2]};
-  const double a_zx[2] = {a[2], a[0]}, b_zx[2] = {b[2], b[0]}, c_zx[2] = {c[2], c[0]};
-  return orient2d(a_xy, b_xy, c_xy) == 0 && orient2d(a_yz, b_yz, c_yz) == 0 && orient2d(a_zx, b_zx, c_zx) == 0;
-}
-
-// Exact sign of 6 × the volume enclosed by the image of the outward boundary triangles:
-// Σ det[a; b; c] (the divergence theorem with the origin as apex; orient3d(a,b,c,d) > 0 for an
-// outward face and an inside point d, so a positively enclosed region gives a positive sum).
-// Double sum with a forward error bound (each term ≤ 5u·permanent, the summation ≤ n·u·Σ|term|,
-// u = 2^-53, taken with a 2× margin); an exact GMP rational sum when the filter cannot decide.
-int enclosed_volume_sign(const std::vector<std::array<std::uint32_t, 3>>& triangles, const double* X) {
-  double sum = 0, magnitude = 0;
-  for (const auto& t : triangles) {
-    const double* a = X + 3 * std::size_t(t[0]);
-    const double* b = X + 3 * std::size_t(t[1]);
-    const double* c = X + 3 * std::size_t(t[2]);
-    sum += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    magnitude += std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
-                 std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
-                 std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
-  }
-  const double u = 0x1p-53;
-  const double bound = 2.0 * (double(triangles.size()) + 8.0) * u * magnitude;
-  if (std::isfinite(sum) && std::isfinite(bound)) {
-    if (sum > bound) return 1;
-    if (sum < -bound) return -1;
-  }
-  Rational exact = 0;
-  for (const auto& t : triangles) {
-    Rational p[9];
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i) p[3 * k + i] = X[3 * std::size_t(t[k]) + i];
-    exact += p[0] * (p[4] * p[8] - p[5] * p[7]) + p[1] * (p[5] * p[6] - p[3] * p[8]) + p[2] * (p[3] * p[7] - p[4] * p[6]);
-  }
-  return exact > 0 ? 1 : (exact < 0 ? -1 : 0);
-}
-
-}  // namespace
-
 FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& on_boundary,
                                       const std::vector<double>& target_xyz) {
   const std::size_t nv = source.num_vertices(), nt = source.num_tets();
@@ -79,7 +35,8 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   const std::vector<std::uint64_t> bfaces = boundary_half_faces(source);
   std::vector<std::array<std::uint32_t, 3>> btri(bfaces.size());
   for (std::size_t f = 0; f < bfaces.size(); ++f) btri[f] = half_face_vertices(source, bfaces[f]);
-  report.boundary_volume_sign = enclosed_volume_sign(btri, X);
+  static_assert(sizeof(btri[0]) == 3 * sizeof(std::uint32_t), "triangles are read as 3 ids each");
+  report.boundary_volume_sign = enclosed_volume_sign(X, nv, btri.empty() ? nullptr : btri[0].data(), btri.size());
   std::vector<std::uint32_t> tri_offset(nv + 1, 0), tri_list;
   for (const auto& t : btri)
     for (auto v : t) ++tri_offset[v + 1];
@@ -155,7 +112,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
     report.chord_edges.push_back(e);
     const std::uint32_t other[1] = {e[1]};
     const std::uint32_t other2[1] = {e[0]};
-    const bool coincident = P(e[0])[0] == P(e[1])[0] && P(e[0])[1] == P(e[1])[1] && P(e[0])[2] == P(e[1])[2];
+    const bool coincident = points_equal(P(e[0]), P(e[1]));
     if (coincident || in_facet_plane_at(e[0], other, 1) || in_facet_plane_at(e[1], other2, 1))
       report.blocking_chord_edges.push_back(e);
   }
@@ -181,7 +138,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   for (std::size_t t = 0; t < nt; ++t) {
     const std::uint32_t* tv = &source.tets[4 * t];
     for (std::uint8_t i = 0; i < 4; ++i) {
-      std::array<std::uint32_t, 3> k = {tv[kTetFaceLocal[i][0]], tv[kTetFaceLocal[i][1]], tv[kTetFaceLocal[i][2]]};
+      std::array<std::uint32_t, 3> k = {tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]};
       if (!(on_boundary[k[0]] && on_boundary[k[1]] && on_boundary[k[2]])) continue;
       std::sort(k.begin(), k.end());
       faces.push_back({k, std::uint32_t(t), i});
@@ -192,7 +149,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
     if (faces[i].key != faces[i + 1].key) continue;
     const auto& k = faces[i].key;
     report.chord_faces.push_back(k);
-    bool blocking = collinear_exact(P(k[0]), P(k[1]), P(k[2]));
+    bool blocking = collinear(P(k[0]), P(k[1]), P(k[2]));
     if (!blocking) {
       const std::uint32_t others[2] = {k[1], k[2]};
       blocking = in_facet_plane_at(k[0], others, 2);

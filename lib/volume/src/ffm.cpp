@@ -56,7 +56,6 @@ namespace {
 using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
-using untangle::exact_nonpositive;
 using untangle::signed_volume_sum;
 
 // Inverse of a row-major 3x3 matrix; returns false when singular.
@@ -493,7 +492,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   std::vector<double> candidate = target_xyz;
   auto finish = [&](const Eigen::VectorXd& x, double eps) {
     energy.write_back(x.data(), target_xyz);
-    result.nonpositive = exact_nonpositive(target_xyz, tets);
+    result.nonpositive = count_nonpositive(target_xyz, tets);
     result.certified = result.nonpositive == 0;
     result.final_epsilon = eps;
     result.min_det = energy.min_det(x.data());
@@ -502,7 +501,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   };
   const std::vector<double> x0 = energy.initial_variables();
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), Eigen::Index(x0.size()));
-  if (options.stop_when_certified && exact_nonpositive(target_xyz, tets) == 0) return finish(x, 0);
+  if (options.stop_when_certified && count_nonpositive(target_xyz, tets) == 0) return finish(x, 0);
   if (x.size() == 0) return finish(x, 0);
 
   untangle::GuardedObjective obj = make_guard(m, tets, candidate);
@@ -582,7 +581,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
   const std::size_t nv = target_xyz.size() / 3, nt = tets.size() / 4;
   if (source_xyz.size() != target_xyz.size() || locked.size() != nv || tets.size() % 4 != 0)
     throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
-  std::vector<std::uint32_t> bad = untangle::exact_nonpositive_tets(target_xyz, tets);
+  std::vector<std::uint32_t> bad = nonpositive_tets(target_xyz, tets);
   result.nonpositive_before = result.nonpositive_after = bad.size();
   if (bad.empty()) return result;
   // Vertex → tets CSR.
@@ -653,7 +652,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       local_id[v] = std::uint32_t(-1);
     }
     result.largest_region_tets = std::max(result.largest_region_tets, sub_tets.size() / 4);
-    const std::size_t sub_before = exact_nonpositive(sub_target, sub_tets);
+    const std::size_t sub_before = count_nonpositive(sub_target, sub_tets);
     std::size_t sub_after = sub_before;
     std::vector<double> trial = sub_target;
     if (!sub_tets.empty()) {
@@ -665,7 +664,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       if (options.time_limit_seconds > 0) fo.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - elapsed());
       try {
         ffm_untangle(sub_source, sub_tets, sub_locked, trial, fo);
-        sub_after = exact_nonpositive(trial, sub_tets);
+        sub_after = count_nonpositive(trial, sub_tets);
       } catch (const Error&) {
         sub_after = sub_before;  // e.g. the region's boundary encloses a non-positive volume: grow it
       }
@@ -685,7 +684,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       rings += options.ring_step;
       if (rings > options.max_rings) break;
     }
-    bad = untangle::exact_nonpositive_tets(target_xyz, tets);
+    bad = nonpositive_tets(target_xyz, tets);
   }
   result.nonpositive_after = bad.size();
   result.seconds = elapsed();
@@ -696,7 +695,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
                                const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                ReferenceShape reference, int max_iterations, double time_limit_seconds) {
   QualityResult result;
-  if (exact_nonpositive(target_xyz, tets) != 0) return result;
+  if (count_nonpositive(target_xyz, tets) != 0) return result;
   FfmEnergy energy(source_xyz, tets, locked, target_xyz, reference, 0.5);
   if (energy.num_variables() == 0) return result;
   const FfmEnergy::Impl& m = energy.impl();
@@ -734,7 +733,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   }
   if (best_energy < result.energy_before) {
     energy.write_back(best.data(), candidate);
-    if (exact_nonpositive(candidate, tets) == 0) {
+    if (count_nonpositive(candidate, tets) == 0) {
       target_xyz = candidate;
       result.improved = true;
       result.energy_after = best_energy;

@@ -24,7 +24,6 @@ namespace {
 using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
-using untangle::exact_nonpositive;
 using untangle::signed_volume_sum;
 
 // Per-tet data of the TLC energy in the scaled frame.
@@ -118,13 +117,13 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   if (source_xyz.size() != target_xyz.size() || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "tlc: inconsistent array sizes");
   untangle::GuardedObjective obj;
   auto finish = [&] {
-    result.nonpositive = exact_nonpositive(target_xyz, tets);
+    result.nonpositive = count_nonpositive(target_xyz, tets);
     result.certified = result.nonpositive == 0;
     result.evaluations = obj.evaluations;
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
   };
-  if (exact_nonpositive(target_xyz, tets) == 0) return finish();
+  if (count_nonpositive(target_xyz, tets) == 0) return finish();
   p.layout.build(nv, tets, locked);
   if (p.layout.free_vertices.empty()) return finish();
   p.frame.fit(target_xyz, 10.0, "tlc");

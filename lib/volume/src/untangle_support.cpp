@@ -12,22 +12,6 @@
 
 namespace volmap::untangle {
 
-std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  if (!c.ok) return tets.size() / 4;
-  return c.zero + c.negative;
-}
-
-std::vector<std::uint32_t> exact_nonpositive_tets(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  const std::size_t nt = tets.size() / 4;
-  std::vector<std::int8_t> signs(nt, 0);
-  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), nt, signs.data());
-  std::vector<std::uint32_t> bad;
-  for (std::size_t t = 0; t < nt; ++t)
-    if (!c.ok || signs[t] <= 0) bad.push_back(std::uint32_t(t));
-  return bad;
-}
-
 void FreeVertexLayout::build(std::size_t nv, const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked) {
   free_index.assign(nv, -1);
   free_vertices.clear();
@@ -125,7 +109,7 @@ void GuardedObjective::set_time_limit(Clock::time_point start, double seconds) {
 
 bool GuardedObjective::exactly_certified(const double* vars) {
   frame->write_back(*layout, vars, *candidate);
-  return exact_nonpositive(*candidate, *tets) == 0;
+  return count_nonpositive(*candidate, *tets) == 0;
 }
 
 double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {

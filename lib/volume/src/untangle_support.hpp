@@ -20,11 +20,8 @@ namespace volmap::untangle {
 
 using Clock = std::chrono::steady_clock;
 
-// Exact number of tets with orient3d <= 0 (all tets when the batch predicate refuses the input).
-std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
-// Ids of the tets with exact orient3d <= 0.
-std::vector<std::uint32_t> exact_nonpositive_tets(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets);
-
+// The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
+// input sanity); they never certify: validity is the exact volmap::count_nonpositive.
 inline double det3(const double* A) {
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
 }

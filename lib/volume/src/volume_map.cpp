@@ -22,12 +22,6 @@ namespace volmap {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-
-std::size_t exact_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
-  const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4, nullptr);
-  if (!c.ok) return tets.size() / 4;
-  return c.zero + c.negative;
-}
 }  // namespace
 
 VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
@@ -88,7 +82,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
           throw Error(ErrorKind::BadInput, "", 0, "the initial map has a non-finite coordinate at vertex " + std::to_string(v));
     r.target_xyz = options.initial_xyz;
   }
-  if (exact_nonpositive(input.xyz, input.tets) != 0)
+  if (count_nonpositive(input.xyz, input.tets) != 0)
     throw Error(ErrorKind::BadInput, "", 0, "the source mesh has tets with orient3d <= 0 (not VOLMAP-positive)");
 
   r.source = input;
@@ -100,7 +94,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     VolumeMapStage s;
     s.name = name;
     s.seconds = elapsed() - t0;
-    s.nonpositive_after = exact_nonpositive(r.target_xyz, r.source.tets);
+    s.nonpositive_after = count_nonpositive(r.target_xyz, r.source.tets);
     r.stages.push_back(s);
     if (best_tets == r.source.num_tets() && best_bad != std::size_t(-1) && s.nonpositive_after > best_bad) {
       r.target_xyz = best_xyz;  // undo
@@ -311,8 +305,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     bad = stage_done("quality", t0);
   }
 
-  r.nonpositive = exact_nonpositive(r.target_xyz, r.source.tets);
-  r.certified = r.nonpositive == 0 && exact_nonpositive(r.source.xyz, r.source.tets) == 0;
+  r.nonpositive = count_nonpositive(r.target_xyz, r.source.tets);
+  r.certified = r.nonpositive == 0 && count_nonpositive(r.source.xyz, r.source.tets) == 0;
   if (!r.certified) r.certified_by.clear();
   r.seconds = elapsed();
   return r;

@@ -12,6 +12,8 @@
 // his safe exponent range [2^-142, 2^201], exact integer arithmetic (Boost cpp_int) outside it.
 // Preconditions of the unchecked scalar functions: all coordinates finite. The *_checked variants
 // and the batch entry point report non-finite input as an error instead of returning a sign.
+// This header has the double-precision API only (no Boost or GMP include); exact rational points
+// and their predicates are in <volmap/predicates_rational.hpp>.
 // Floating-point environment: the filters' error bounds assume IEEE binary64 with round-to-nearest
 // and gradual underflow (no FTZ/DAZ, which linking with -ffast-math sets). On x86 every public
 // function below checks MXCSR per call (per batch for orient3d_tets) and, when FTZ/DAZ or another
@@ -23,14 +25,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
-
-#include <boost/multiprecision/gmp.hpp>
+#include <vector>
 
 namespace volmap {
-
-// Exact rational number (GMP backend, expression templates off: safe to store in auto).
-using Rational = boost::multiprecision::number<boost::multiprecision::gmp_rational,
-                                               boost::multiprecision::et_off>;
 
 enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
 
@@ -52,11 +49,23 @@ int orient3d_checked(const double* a, const double* b, const double* c, const do
 int incircle_checked(const double* a, const double* b, const double* c, const double* d);
 int insphere_checked(const double* a, const double* b, const double* c, const double* d, const double* e);
 
-// Exact predicates on rational points (arrays of 2 or 3 Rationals), same conventions.
-int orient2d(const Rational* a, const Rational* b, const Rational* c);
-int orient3d(const Rational* a, const Rational* b, const Rational* c, const Rational* d);
-int incircle(const Rational* a, const Rational* b, const Rational* c, const Rational* d);
-int insphere(const Rational* a, const Rational* b, const Rational* c, const Rational* d, const Rational* e);
+// Exact tests built on the predicates (3D points, finite coordinates; exact in any FP environment).
+// points_equal: value equality of every coordinate (+0 == -0), also under DAZ, where the hardware
+// compares subnormals as zero.
+bool points_equal(const double* p, const double* q);
+// collinear: a, b, c on one line (also when two or three of them coincide), i.e. (b−a)×(c−a) = 0,
+// decided as orient2d = 0 in the three coordinate planes.
+bool collinear(const double* a, const double* b, const double* c);
+
+// Exact sign of the volume enclosed by a closed triangle surface: sign of Σ det[a; b; c] over the
+// triangles (a, b, c) (6 × the signed volume, divergence theorem with the origin as apex). Positive
+// when the triangles are oriented outward in the VOLMAP convention (orient3d(a, b, c, inside) > 0).
+// xyz: 3*num_vertices doubles; triangles: 3*num_triangles vertex ids. A double sum with a forward
+// error bound decides unless the sum is near zero; then an exact expansion (or rational) sum.
+// Throws NonFiniteInput when a referenced coordinate is not finite, std::out_of_range for an id >=
+// num_vertices. The surface is not checked for closedness (the sum then depends on the origin).
+int enclosed_volume_sign(const double* xyz, std::size_t num_vertices, const std::uint32_t* triangles,
+                         std::size_t num_triangles);
 
 // Result of a batch orientation pass over a tet mesh.
 struct TetSignCounts {
@@ -91,10 +100,22 @@ Orient3dBatchFilter orient3d_batch_filter(const double* xyz, std::size_t num_ver
 TetSignCounts orient3d_tets(const Orient3dBatchFilter& filter, const double* xyz, std::size_t num_vertices,
                             const std::uint32_t* tets, std::size_t num_tets, std::int8_t* signs);
 
-// Same on exact rational coordinates (3*num_vertices Rationals): a double prefilter with the
-// conversion error in its bound decides most tets, the rest use homogeneous integer determinants.
-TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const std::uint32_t* tets,
-                            std::size_t num_tets, std::int8_t* signs);
+// Number of tets with orient3d <= 0 (the certification count: a map is valid iff it is 0), by
+// orient3d_tets. Input orient3d_tets refuses (non-finite coordinate, id out of range) counts every tet
+// as non-positive: the result is then num_tets and signs (when given) are all 0.
+std::size_t count_nonpositive(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                              std::size_t num_tets, std::int8_t* signs = nullptr);
+// Ids of the tets with orient3d <= 0 (every id when the input is refused), increasing.
+std::vector<std::uint32_t> nonpositive_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
+                                            std::size_t num_tets);
+// The same on flat arrays (xyz.size()/3 vertices, tets.size()/4 tets).
+inline std::size_t count_nonpositive(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  return count_nonpositive(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4);
+}
+inline std::vector<std::uint32_t> nonpositive_tets(const std::vector<double>& xyz,
+                                                   const std::vector<std::uint32_t>& tets) {
+  return nonpositive_tets(xyz.data(), xyz.size() / 3, tets.data(), tets.size() / 4);
+}
 
 // One floating-point environment check for a whole loop of scalar predicate calls.
 // Construction reads MXCSR once and, when FTZ/DAZ or a non-nearest rounding mode is set, switches the

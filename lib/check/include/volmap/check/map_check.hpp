@@ -11,7 +11,7 @@
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <cstddef>
 #include <cstdint>

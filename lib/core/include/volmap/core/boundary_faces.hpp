@@ -1,12 +1,13 @@
 // volmap/core/boundary_faces.hpp — boundary faces and vertices of a raw TetMeshData (no half-face
 // structure needed). Conventions: half-face id 4t+i is the face of tet t opposite its local vertex i;
 // its vertices, in the order that is outward for a VOLMAP-positive tet (orient3d(v0,v1,v2,v3) > 0),
-// are kTetFaceLocal[i]: F0=(1,3,2) F1=(0,2,3) F2=(0,3,1) F3=(0,1,2).
+// are kTetFace[i] (local_tables.hpp): F0=(1,3,2) F1=(0,2,3) F2=(0,3,1) F3=(0,1,2).
 // A face is a boundary face when exactly one tet has it (faces are compared as sorted vertex
 // triples, found by sorting, never by hashing). Faces shared by three or more tets (non-manifold)
 // are not boundary faces.
 #pragma once
 
+#include <volmap/core/local_tables.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <array>
@@ -15,13 +16,10 @@
 
 namespace volmap {
 
-// Local vertex indices of the face opposite local vertex i, outward for a VOLMAP-positive tet.
-inline constexpr std::uint8_t kTetFaceLocal[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
-
-// The three vertex ids of half-face `hf` (= 4t+i) in outward order (kTetFaceLocal).
+// The three vertex ids of half-face `hf` (= 4t+i) in outward order (kTetFace).
 inline std::array<std::uint32_t, 3> half_face_vertices(const TetMeshData& mesh, std::uint64_t hf) {
   const std::uint32_t* tet = &mesh.tets[(hf / 4) * 4];
-  const std::uint8_t* local = kTetFaceLocal[hf % 4];
+  const std::uint8_t* local = kTetFace[hf % 4];
   return {tet[local[0]], tet[local[1]], tet[local[2]]};
 }
 

@@ -14,7 +14,7 @@
 #include <volmap/core/error.hpp>
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/io/atomic_file.hpp>
-#include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include <string>
 #include <vector>

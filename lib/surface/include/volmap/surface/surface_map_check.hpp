@@ -56,8 +56,4 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
                                         const Domain* domain = nullptr,
                                         const SurfaceMapCheckOptions& options = {});
 
-// Exact orient3d with a floating-point filter in front (Shewchuk's static error bound for orient3d,
-// then the exact predicate from <volmap/predicates.hpp> when the filter cannot decide).
-int orient3d_filtered(const double* a, const double* b, const double* c, const double* d);
-
 }  // namespace volmap
