@@ -2,9 +2,10 @@
 //   volmap-map-check <in.mesh> <out.mesh> [--boundary map.txt] [--rationals-in f] [--rationals-out f]
 //                    [--absolute] [--json]
 // in.mesh must be a valid VOLMAP input (input_mesh.hpp: what volmap-tetmesh-check accepts), else
-// exit 2 naming it and the problem; the one exception is an input whose only problem is its
-// orientation (negative tets, e.g. the opposite convention): it gets the relative check, never a
-// certificate (exit 1 at best). Every tet is evaluated in the INPUT tet's vertex order with exact orient3d (VOLMAP-positive = > 0).
+// exit 2 naming it and the problem; the one exception, without --absolute, is an input whose only
+// problem is its orientation (negative tets, e.g. the opposite convention): it gets VOLMAP's relative
+// check, never a certificate (exit 1 at best). --absolute asks for a certificate, so it refuses every
+// invalid input. Every tet is evaluated in the INPUT tet's vertex order with exact orient3d (VOLMAP-positive = > 0).
 // Relative test (VOLMAP's): the output sign must equal the input sign, nonzero. --absolute also
 // requires the output tet (in the output file's own vertex order) to be > 0. Certified only when
 // additionally every input tet is positive and (with --boundary) every boundary vertex sits exactly
@@ -48,11 +49,14 @@ int main(int argc, char** argv) {
     auto t0 = Clock::now();
     const volmap::TetMeshData in = volmap::read_tet_mesh(in_path);
     // A relative check of an input in the opposite orientation convention is VOLMAP's use case: such
-    // an input passes with a note (and is never certified); any other problem refuses it.
+    // an input passes with a note (and is never certified); any other problem refuses it, and so
+    // does any problem at all when --absolute asks for a certificate.
     const volmap::InputMeshVerdict verdict =
         volmap_tools::naming_file(in_path, [&] { return volmap::judge_input_mesh(in); });
-    if (!verdict.valid_up_to_orientation)
-      throw volmap::Error(volmap::ErrorKind::BadInput, in_path, 0, "not a valid input tet mesh: " + verdict.reason());
+    if (!verdict.valid_up_to_orientation || (absolute && !verdict.valid))
+      throw volmap::Error(volmap::ErrorKind::BadInput, in_path, 0,
+                          "not a valid input tet mesh: " + verdict.reason() +
+                              (verdict.valid_up_to_orientation ? " (--absolute certifies valid inputs only; without it the relative check runs)" : ""));
     const volmap::TetMeshData out = volmap::read_tet_mesh(out_path);
     // The pair is checked first, so a mismatch is blamed on the mapped mesh, not on a later file.
     volmap_tools::naming_file(out_path + " (against " + in_path + ")", [&] { return volmap::match_connectivity(in, out); });

@@ -541,8 +541,6 @@ TEST_CASE("bad-input suite: every tool x every argument x every class") {
           // volmap-tetmesh-check reports (exit 1, the --log line written); --fix repairs the inverted mesh.
           if (inv.tool == "volmap-tetmesh-check" && v.cls == "validity")
             v.codes = {v.what.find("all_inverted") != std::string::npos ? 0 : 1}, v.accepted = true;
-          if (inv.tool == "volmap-map-check" && v.what.rfind("v_", 0) == 0 && v.what.find("inverted") != std::string::npos)
-            v.codes = {1, 2};  // orientation only: the relative check runs, never certifies
           if (inv.tool == "volmap-surface-map-check" && v.what.rfind("m_", 0) == 0) v.codes = {1, 2};
           if (inv.tool == "volmap-view" && slot.kind == Kind::ViewMesh && v.what.find("v_no_tets") != std::string::npos)
             v.codes = {2}, v.accepted = false;
