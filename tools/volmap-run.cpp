@@ -10,6 +10,8 @@
 //   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
 //       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
 // Results: <out>/results.jsonl, one JSON object per case (see lib benchmark_runner.hpp).
+// --json (before or after a subcommand) prints one JSON object instead of text. Exit 0 means the
+// runs were made and recorded (whether each case was certified is in its record), 2 bad input.
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -147,6 +149,7 @@ int main(int argc, char** argv) {
   one->add_option("--out", out, "results folder");
   one->add_option("--timeout", timeout, "seconds for the candidate (0 = none)")->check(volmap_tools::finite_non_negative());
   one->add_flag("--keep-outputs", keep, "keep the written meshes");
+  for (auto* sub : {report, table, list, one}) sub->add_flag("--json", json, "print one JSON object instead of text");
   app.require_subcommand(0, 1);
 
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
@@ -160,6 +163,8 @@ int main(int argc, char** argv) {
       const std::string md = volmap::mapping_table_markdown(runs);
       volmap::write_text(out, md);
       files.commit();
+      if (json)
+        return volmap_tools::print_json({{"table", fs::absolute(table_path).string()}, {"markdown", md}}, volmap_tools::kExitOk);
       std::cout << md << "\ntable: " << fs::absolute(table_path).string() << "\n";
       return volmap_tools::kExitOk;
     }
@@ -175,13 +180,19 @@ int main(int argc, char** argv) {
       volmap::write_text(html, volmap::render_report_html(runs, "volmap benchmark report"));
       volmap::write_text(csv, volmap::summary_csv(runs));
       files.commit();
+      if (json)
+        return volmap_tools::print_json({{"report", fs::absolute(html_path).string()}, {"summary", fs::absolute(csv_path).string()},
+                                         {"runs", runs.size()}},
+                                        volmap_tools::kExitOk);
       std::cout << "report: " << fs::absolute(html_path).string() << "\nsummary: " << fs::absolute(csv_path).string() << "\n";
       return volmap_tools::kExitOk;
     }
     if (list->parsed()) {
+      nlohmann::json ids = nlohmann::json::array();
       for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains), split_list(meshes)))
-        std::cout << c.id() << "\n";
-      return volmap_tools::kExitOk;
+        if (json) ids.push_back(c.id());
+        else std::cout << c.id() << "\n";
+      return json ? volmap_tools::print_json({{"cases", ids}}, volmap_tools::kExitOk) : volmap_tools::kExitOk;
     }
     if (one->parsed()) {
       const auto all = volmap::discover_cases(case_dataset);
@@ -198,6 +209,9 @@ int main(int argc, char** argv) {
       const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
       fs::create_directories(path.parent_path());
       volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
+      if (json)
+        return volmap_tools::print_json({{"case", case_id}, {"certified", record.certified}, {"record", path.string()}},
+                                        volmap_tools::kExitOk);
       std::cout << case_id << ": " << (record.certified ? "certified" : "not certified") << "\n";
       return volmap_tools::kExitOk;
     }

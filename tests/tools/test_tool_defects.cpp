@@ -428,6 +428,13 @@ TEST_CASE("defect 9: messages name the file and the real reason") {
 TEST_CASE("one JSON contract: \"ok\" is the verdict (exit 0) and \"exit_code\" is always there") {
   Workspace w;
   const std::string gmsh = w.mesh_file("gmsh.mesh", all_flipped(w.grid.mesh));
+  const std::string off = w.write("tet.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  const std::string bundle = w.write("bundle.js", "console.log(1);");
+  const fs::path results = w.root / "results";
+  fs::create_directories(results);
+  volmap_test::write_bytes(results / "results.jsonl",
+                           "{\"case\":\"G1/a_cube\",\"group\":\"G1\",\"mesh\":\"a\",\"domain\":\"cube\",\"method\":\"m\","
+                           "\"certified\":true,\"time_s\":1}\n");
   struct Run {
     std::string tool;
     std::vector<std::string> args;
@@ -449,19 +456,38 @@ TEST_CASE("one JSON contract: \"ok\" is the verdict (exit 0) and \"exit_code\" i
       {"volmap-shapes", {w.o("shapes"), "--names", "ellipsoid", "--subdivisions", "1"}},
       {"volmap-shapes", {w.o("shapes2"), "--names", "nonsense"}},
       {"volmap-predicates-selftest", {}},
+      {"volmap-tetrahedralize", {off, w.o("t.vtu")}},
+      {"volmap-tetrahedralize", {off, w.o("t.txt")}},
+      {"volmap-view", {w.mesh, "-o", w.o("v.html"), "--bundle", bundle}},
+      {"volmap-view", {gmsh, "-o", w.o("v.txt"), "--bundle", (w.in / "missing.js").string()}},
+      {"volmap-run", {"report", results.string(), "-o", w.o("r.html"), "--csv", w.o("s.csv")}},
+      {"volmap-run", {"table", results.string(), "-o", w.o("t.md")}},
+      {"volmap-run", {"list", w.in.string()}},
+      {"volmap-run", {"report", (w.root / "no_results").string(), "-o", w.o("r2.html")}},
+      {"volmap-dataset", {(w.root / "no_surfaces").string(), w.o("ds"), "--group", "G9"}},
   };
   for (const Run& run : runs) {
     if (!built(run.tool)) continue;
-    std::vector<std::string> args = run.args;
-    args.push_back("--json");
-    const RunResult r = w.run(run.tool, args);
-    CAPTURE(run.tool);
-    CAPTURE(r.err);
-    REQUIRE_FALSE(r.signaled);
-    nlohmann::json j;
-    REQUIRE_NOTHROW(j = nlohmann::json::parse(r.out));
-    REQUIRE(j.is_object());
-    CHECK(j.at("ok") == (r.exit_code == 0));
-    CHECK(j.at("exit_code") == r.exit_code);
+    // --json last, and for volmap-run's subcommands also before the subcommand.
+    std::vector<std::vector<std::string>> placements{run.args};
+    placements.front().push_back("--json");
+    if (run.tool == "volmap-run") {
+      placements.push_back(run.args);
+      placements.back().insert(placements.back().begin(), "--json");
+    }
+    for (const auto& args : placements) {
+      const RunResult r = w.run(run.tool, args);
+      CAPTURE(run.tool);
+      CAPTURE(args.front());
+      CAPTURE(r.err);
+      REQUIRE_FALSE(r.signaled);
+      nlohmann::json j;
+      REQUIRE_NOTHROW(j = nlohmann::json::parse(r.out));
+      REQUIRE(j.is_object());
+      CHECK(j.at("ok") == (r.exit_code == 0));
+      CHECK(j.at("exit_code") == r.exit_code);
+      fs::remove_all(w.out);
+      fs::create_directories(w.out);
+    }
   }
 }
