@@ -4,6 +4,7 @@
 // should not; the small Kuhn-grid mesh and identity boundary map the tool suites start from.
 #pragma once
 
+#include <volmap/core/boundary_faces.hpp>
 #include <volmap/testing/generate.hpp>
 
 #include "test_support.hpp"
@@ -20,6 +21,7 @@
 #include <string>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -173,6 +175,43 @@ inline std::string identity_map_text(const GridFixture& g) {
   for (std::size_t v = 0; v < g.boundary.size(); ++v)
     if (g.boundary[v]) s << v << " " << g.mesh.xyz[3 * v] << " " << g.mesh.xyz[3 * v + 1] << " " << g.mesh.xyz[3 * v + 2] << "\n";
   return s.str();
+}
+
+// The identity boundary map of any mesh: every boundary vertex at its own position.
+inline std::string boundary_identity_map_text(const volmap::TetMeshData& m) {
+  std::ostringstream s;
+  s.precision(17);
+  for (std::uint32_t v : volmap::boundary_vertex_ids(m))
+    s << v << " " << m.xyz[3 * v] << " " << m.xyz[3 * v + 1] << " " << m.xyz[3 * v + 2] << "\n";
+  return s.str();
+}
+
+// A fresh scratch tree of a tool suite, <tmp>/volmap_<tag>_<pid>: inputs in in/, outputs in out/,
+// the captured stdout/stderr of each run in scratch/. Removed when the suite ends.
+struct ToolTree {
+  std::filesystem::path root, in, out, scratch;
+  explicit ToolTree(const std::string& tag) {
+    root = std::filesystem::temp_directory_path() / ("volmap_" + tag + "_" + std::to_string(getpid()));
+    std::filesystem::remove_all(root);
+    in = root / "in", out = root / "out", scratch = root / "scratch";
+    for (const auto& d : {in, out, scratch}) std::filesystem::create_directories(d);
+  }
+  ~ToolTree() { std::filesystem::remove_all(root); }
+  ToolTree(const ToolTree&) = delete;
+  ToolTree& operator=(const ToolTree&) = delete;
+  void clear_out() const {
+    std::filesystem::remove_all(out);
+    std::filesystem::create_directories(out);
+  }
+};
+
+// A character device at `path` for a tool to be given as an OUTPUT, which it must refuse. As root a
+// private null device node (mknod 1,3), so a tool that wrongly replaces it destroys only this node,
+// never the machine's /dev/null; otherwise a symbolic link to /dev/null (which only root can replace).
+inline std::string output_device_target(const std::filesystem::path& path) {
+  if (geteuid() != 0 || mknod(path.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0)
+    std::filesystem::create_symlink("/dev/null", path);
+  return path.string();
 }
 
 // True when one of the '|'-separated alternatives occurs in `text` (an empty list matches).

@@ -88,19 +88,13 @@ struct Counts {
   int tried = 0, clean = 0, defects = 0;
 };
 
-class Suite {
+class Suite : public volmap_test::ToolTree {
  public:
-  fs::path root, in, out, dev, scratch;
+  fs::path dev;  // FIFOs, device links and folders as output targets
   std::map<std::string, Counts> by_class;
   std::vector<std::string> failures;
 
-  Suite() {
-    root = fs::temp_directory_path() / ("volmap_bad_input_suite_" + std::to_string(getpid()));
-    fs::remove_all(root);
-    in = root / "in", out = root / "out", dev = root / "dev", scratch = root / "scratch";
-    for (const auto& d : {in, out, dev, scratch}) fs::create_directories(d);
-  }
-  ~Suite() { fs::remove_all(root); }
+  Suite() : ToolTree("bad_input_suite"), dev(root / "dev") { fs::create_directories(dev); }
 
   std::string file(const std::string& name, const std::string& bytes) const {
     return volmap_test::write_bytes(in / name, bytes);
@@ -215,10 +209,6 @@ class Suite {
     }
   }
 
-  void clear_out() {
-    fs::remove_all(out);
-    fs::create_directories(out);
-  }
 };
 
 // ---- fixtures ---------------------------------------------------------------------------------------
@@ -226,14 +216,6 @@ std::string replace_once(std::string text, const std::string& from, const std::s
   const auto at = text.find(from);
   REQUIRE(at != std::string::npos);
   return text.replace(at, from.size(), to);
-}
-
-std::string identity_map_of(const volmap::TetMeshData& m) {
-  std::ostringstream s;
-  s.precision(17);
-  for (std::uint32_t v : volmap::boundary_vertex_ids(m))
-    s << v << " " << m.xyz[3 * v] << " " << m.xyz[3 * v + 1] << " " << m.xyz[3 * v + 2] << "\n";
-  return s.str();
 }
 
 std::string crlf(const std::string& text) {
@@ -410,7 +392,7 @@ std::vector<Variant> input_variants(Suite& s, Kind kind, const std::string& ext,
 TEST_CASE("bad-input suite: every tool x every argument x every class") {
   Suite s;
   const volmap::TetMeshData grid = volmap::generate_kuhn_grid(2, 2, 2);
-  const std::string mesh_text = volmap_test::medit_text(grid), map_text = identity_map_of(grid);
+  const std::string mesh_text = volmap_test::medit_text(grid), map_text = volmap_test::boundary_identity_map_text(grid);
   Inputs g;
   g.mesh = s.file("good.mesh", mesh_text);
   g.map = s.file("good_map.txt", map_text);
@@ -520,8 +502,8 @@ TEST_CASE("bad-input suite: every tool x every argument x every class") {
   // FIFOs, device links and a read-only folder as output targets live in dev/ (checked unchanged).
   REQUIRE(mkfifo((s.dev / "fifo.mesh").c_str(), 0644) == 0);
   REQUIRE(mkfifo((s.dev / "fifo.txt").c_str(), 0644) == 0);
-  fs::create_symlink("/dev/null", s.dev / "null.mesh");
-  fs::create_symlink("/dev/null", s.dev / "null.txt");
+  volmap_test::output_device_target(s.dev / "null.mesh");
+  volmap_test::output_device_target(s.dev / "null.txt");
   fs::create_directories(s.dev / "dir.mesh");
   fs::create_directories(s.dev / "dir.txt");
   volmap_test::write_bytes(s.dev / "file.txt", "a regular file\n");

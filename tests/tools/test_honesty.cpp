@@ -7,14 +7,12 @@
 // when absent.
 #include <doctest/doctest.h>
 
-#include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/testing/generate.hpp>
 
 #include "tool_run.hpp"
 
 #include <filesystem>
-#include <sstream>
 
 namespace fs = std::filesystem;
 using volmap_test::RunResult;
@@ -30,12 +28,8 @@ void require_refused_everywhere(const fs::path& mesh, const fs::path& work) {
   const fs::path out = work / "out", scratch = work / "scratch";
   fs::remove_all(work);
   for (const auto& d : {out, scratch}) fs::create_directories(d);
-  const volmap::TetMeshData m = volmap::read_tet_mesh(mesh.string());
-  std::ostringstream map_text;
-  map_text.precision(17);
-  for (std::uint32_t v : volmap::boundary_vertex_ids(m))
-    map_text << v << " " << m.xyz[3 * v] << " " << m.xyz[3 * v + 1] << " " << m.xyz[3 * v + 2] << "\n";
-  const std::string map = volmap_test::write_bytes(work / "identity_map.txt", map_text.str());
+  const std::string map = volmap_test::write_bytes(
+      work / "identity_map.txt", volmap_test::boundary_identity_map_text(volmap::read_tet_mesh(mesh.string())));
   const std::string in = mesh.string(), name = mesh.filename().string();
   const std::string before = volmap_test::fingerprint(mesh.parent_path());
   const std::vector<std::vector<std::string>> runs = {

@@ -10,7 +10,6 @@
 // Counts (tried / clean and each kind of defect) are written to <build>/mutation_suite.txt.
 #include <doctest/doctest.h>
 
-#include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/testing/generate.hpp>
 
@@ -116,19 +115,12 @@ struct Counts {
       dishonest = 0, accepted = 0, check_failed = 0, refused = 0;
 };
 
-class Suite {
+class Suite : public volmap_test::ToolTree {
  public:
-  fs::path root, in, out, scratch;
   std::map<std::string, Counts> by_kind;
   std::vector<std::string> failures;
 
-  Suite() {
-    root = fs::temp_directory_path() / ("volmap_mutation_suite_" + std::to_string(getpid()));
-    fs::remove_all(root);
-    in = root / "in", out = root / "out", scratch = root / "scratch";
-    for (const auto& d : {in, out, scratch}) fs::create_directories(d);
-  }
-  ~Suite() { fs::remove_all(root); }
+  Suite() : ToolTree("mutation_suite") {}
 
   std::string file(const std::string& name, const std::string& bytes) const { return volmap_test::write_bytes(in / name, bytes); }
   std::string o(const std::string& name) const { return (out / name).string(); }
@@ -184,8 +176,7 @@ class Suite {
       for (const auto& p : problems) line += p + "; ";
       failures.push_back(line + "| stderr: " + err.substr(0, 300));
     }
-    fs::remove_all(out);
-    fs::create_directories(out);
+    clear_out();
     return r;
   }
 
@@ -195,14 +186,6 @@ class Suite {
     return !r.signaled && r.exit_code == 0;
   }
 };
-
-std::string identity_map_of(const volmap::TetMeshData& m) {
-  std::ostringstream s;
-  s.precision(17);
-  for (std::uint32_t v : volmap::boundary_vertex_ids(m))
-    s << v << " " << m.xyz[3 * v] << " " << m.xyz[3 * v + 1] << " " << m.xyz[3 * v + 2] << "\n";
-  return s.str();
-}
 
 bool all_built(const std::vector<std::string>& tools) {
   for (const auto& t : tools)
@@ -222,7 +205,7 @@ TEST_CASE("mutation suite: mutated inputs of every kind through the tools that r
   Suite s;
   Mutator mutator(20261124);
   const volmap::TetMeshData grid = volmap::generate_kuhn_grid(2, 2, 2);
-  const std::string mesh_text = volmap_test::medit_text(grid), map_text = identity_map_of(grid);
+  const std::string mesh_text = volmap_test::medit_text(grid), map_text = volmap_test::boundary_identity_map_text(grid);
   const std::string mesh = s.file("good.mesh", mesh_text), map = s.file("good_map.txt", map_text);
   std::string rat;
   for (double x : grid.xyz) rat += std::to_string(static_cast<int>(x)) + "\n";

@@ -6,7 +6,6 @@
 // behind, and that the inputs are unchanged.
 #include <doctest/doctest.h>
 
-#include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/testing/generate.hpp>
 
@@ -26,20 +25,14 @@ using volmap_test::RunResult;
 namespace {
 
 // A scratch workspace: inputs in in/, outputs in out/, captures in scratch/.
-struct Workspace {
-  fs::path root, in, out, scratch;
+struct Workspace : volmap_test::ToolTree {
   volmap_test::GridFixture grid = volmap_test::kuhn_grid_fixture(2);
   std::string mesh, map;  // good inputs: the 2x2x2 Kuhn grid and its identity boundary map
 
-  Workspace() {
-    root = fs::temp_directory_path() / ("volmap_tool_defects_" + std::to_string(getpid()));
-    fs::remove_all(root);
-    in = root / "in", out = root / "out", scratch = root / "scratch";
-    for (const auto& d : {in, out, scratch}) fs::create_directories(d);
+  Workspace() : ToolTree("tool_defects") {
     mesh = write("good.mesh", volmap_test::medit_text(grid.mesh));
     map = write("good_map.txt", volmap_test::identity_map_text(grid));
   }
-  ~Workspace() { fs::remove_all(root); }
 
   std::string write(const std::string& name, const std::string& text) const {
     return volmap_test::write_bytes(in / name, text);
@@ -49,11 +42,7 @@ struct Workspace {
   }
   // Identity boundary map of any mesh (every boundary vertex at its own position).
   std::string identity_map(const std::string& name, const volmap::TetMeshData& m) const {
-    std::ostringstream s;
-    s.precision(17);
-    for (std::uint32_t v : volmap::boundary_vertex_ids(m))
-      s << v << " " << m.xyz[3 * v] << " " << m.xyz[3 * v + 1] << " " << m.xyz[3 * v + 2] << "\n";
-    return write(name, s.str());
+    return write(name, volmap_test::boundary_identity_map_text(m));
   }
   std::string o(const std::string& name) const { return (out / name).string(); }
 
@@ -187,16 +176,18 @@ TEST_CASE("defect 3: FIFOs and devices are never replaced by an output") {
   const fs::path dev = w.root / "dev";
   fs::create_directories(dev);
   REQUIRE(mkfifo((dev / "fifo.mesh").c_str(), 0644) == 0);
-  fs::create_symlink("/dev/null", dev / "null.mesh");
+  volmap_test::output_device_target(dev / "null.mesh");
+  volmap_test::output_device_target(dev / "null.csv");
   const RunResult fifo = w.run("volmap-tutte3d", {w.mesh, w.map, (dev / "fifo.mesh").string()});
   check_refused(w, fifo, 2, {"fifo.mesh", "FIFO"});
   CHECK(fs::is_fifo(dev / "fifo.mesh"));
   const RunResult null = w.run("volmap-tutte3d", {w.mesh, w.map, (dev / "null.mesh").string()});
   check_refused(w, null, 2, {"null.mesh", "character device"});
-  CHECK(fs::is_character_file("/dev/null"));
-  CHECK(fs::is_symlink(dev / "null.mesh"));
-  check_refused(w, w.run("volmap-metrics", {w.mesh, w.mesh, "--csv", "/dev/null"}), 2, {"/dev/null", "character device"});
-  CHECK(volmap_test::listing(dev) == std::vector<std::string>{"fifo.mesh", "null.mesh"});
+  CHECK(fs::is_character_file(dev / "null.mesh"));
+  check_refused(w, w.run("volmap-metrics", {w.mesh, w.mesh, "--csv", (dev / "null.csv").string()}), 2,
+                {"null.csv", "character device"});
+  CHECK(fs::is_character_file(dev / "null.csv"));
+  CHECK(volmap_test::listing(dev) == std::vector<std::string>{"fifo.mesh", "null.csv", "null.mesh"});
 }
 
 TEST_CASE("defect 4: the outputs of a run are written together or not at all") {
@@ -263,8 +254,7 @@ TEST_CASE("defect 6: every mesh output is written in the format of its extension
     CHECK(head(w.o("t.vtu")).find("<?xml") == 0);
     CHECK(w.run("volmap-tutte3d", {w.mesh, w.map, w.o("t.vtk")}).exit_code == 0);
     CHECK(head(w.o("t.vtk")).find("# vtk DataFile") == 0);
-    fs::remove_all(w.out);
-    fs::create_directories(w.out);
+    w.clear_out();
     check_refused(w, w.run("volmap-tutte3d", {w.mesh, w.map, w.o("t.txt")}), 2, {"t.txt", "extension"});
   }
   if (built("volmap-map")) {
@@ -410,8 +400,7 @@ TEST_CASE("defect 9: messages name the file and the real reason") {
     if (!built(tool)) continue;
     const RunResult r = tool == "volmap-metrics" ? w.run(tool, {vtk, vtk}) : w.run(tool, {vtk, w.map, w.o("t.mesh")});
     CHECK_MESSAGE(r.exit_code == 0, tool << ": " << r.err);
-    fs::remove_all(w.out);
-    fs::create_directories(w.out);
+    w.clear_out();
   }
   // A UTF-8 byte-order mark is accepted (Medit, OFF, map).
   const std::string bom_mesh = w.write("bom.mesh", "\xEF\xBB\xBF" + volmap_test::read_bytes(w.mesh));
@@ -486,8 +475,7 @@ TEST_CASE("one JSON contract: \"ok\" is the verdict (exit 0) and \"exit_code\" i
       REQUIRE(j.is_object());
       CHECK(j.at("ok") == (r.exit_code == 0));
       CHECK(j.at("exit_code") == r.exit_code);
-      fs::remove_all(w.out);
-      fs::create_directories(w.out);
+      w.clear_out();
     }
   }
 }
