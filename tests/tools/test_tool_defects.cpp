@@ -450,7 +450,7 @@ TEST_CASE("one JSON contract: \"ok\" is the verdict (exit 0) and \"exit_code\" i
       {"volmap-view", {w.mesh, "-o", w.o("v.html"), "--bundle", bundle}},
       {"volmap-view", {gmsh, "-o", w.o("v.txt"), "--bundle", (w.in / "missing.js").string()}},
       {"volmap-run", {"report", results.string(), "-o", w.o("r.html"), "--csv", w.o("s.csv")}},
-      {"volmap-run", {"table", results.string(), "-o", w.o("t.md")}},
+      {"volmap-run", {"table", results.string(), "-o", w.o("table.txt")}},
       {"volmap-run", {"list", w.in.string()}},
       {"volmap-run", {"report", (w.root / "no_results").string(), "-o", w.o("r2.html")}},
       {"volmap-dataset", {(w.root / "no_surfaces").string(), w.o("ds"), "--group", "G9"}},
