@@ -9,10 +9,14 @@
 #include <volmap/surface/boundary_surface.hpp>
 #include <volmap/testing/generate.hpp>
 #include <volmap/io/io.hpp>
+#include <volmap/core/local_tables.hpp>
 #include <volmap/core/tet_mesh.hpp>
 #include <volmap/core/topology.hpp>
 
+#include "side_by_side.hpp"
+
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -113,6 +117,59 @@ void BM_Build(benchmark::State& st) {
                                                                           benchmark::Counter::kInvert);
 }
 
+// Anchor of the half-face build: a plain vector-of-vectors mesh, the way a textbook (or cinolib-style)
+// code finds face neighbours: per-vertex lists of incident tets, then for every face of every tet the
+// tet sharing it, found in the list of the face's first vertex. Result: the opposite half-face 4u + j
+// (or -1 on the boundary) of every half-face, as TetMesh's opposite array.
+struct PlainMesh {
+  std::vector<std::vector<std::uint32_t>> vertex_tets;
+  std::vector<std::int64_t> opposite;
+};
+PlainMesh plain_mesh_build(const TetMeshData& d) {
+  PlainMesh m;
+  const std::size_t nt = d.num_tets();
+  const std::uint32_t* tets = d.tets.data();
+  m.vertex_tets.resize(d.num_vertices());
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 4; ++k) m.vertex_tets[tets[4 * t + k]].push_back(std::uint32_t(t));
+  m.opposite.assign(4 * nt, -1);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int f = 0; f < 4; ++f) {
+      const std::uint32_t a = tets[4 * t + kTetFace[f][0]], b = tets[4 * t + kTetFace[f][1]], c = tets[4 * t + kTetFace[f][2]];
+      for (std::uint32_t u : m.vertex_tets[a]) {
+        if (u == t) continue;
+        const std::uint32_t* q = tets + 4 * std::size_t(u);
+        int shared = 0, other = 0;
+        for (int j = 0; j < 4; ++j) {
+          const bool in_face = q[j] == a || q[j] == b || q[j] == c;
+          shared += in_face;
+          if (!in_face) other = j;
+        }
+        if (shared == 3) {
+          m.opposite[4 * t + f] = std::int64_t(4 * std::size_t(u) + other);
+          break;
+        }
+      }
+    }
+  return m;
+}
+
+// TetMesh(data) next to the plain build, alternately in one loop (side_by_side.hpp); fails unless
+// both find the same face pairs.
+void BM_Build_SideBySide(benchmark::State& st) {
+  const TetMeshData& d = grid(std::size_t(st.range(0)));
+  std::unique_ptr<TetMesh> ours;
+  PlainMesh plain;
+  bench::run_side_by_side(
+      st, [&] { ours = std::make_unique<TetMesh>(d); }, [&] { plain = plain_mesh_build(d); });
+  const auto& opp = ours->opposite_array();
+  std::size_t mismatches = 0;
+  for (std::size_t h = 0; h < opp.size(); ++h)
+    mismatches += plain.opposite[h] < 0 ? opp[h] != TetMesh::kBoundary : opp[h] != std::uint32_t(plain.opposite[h]);
+  if (mismatches != 0) st.SkipWithError("the plain build found other face pairs");
+  st.counters["tets"] = double(d.num_tets());
+}
+
 void BM_AllEdgeStars(benchmark::State& st) {
   const TetMesh m(grid(std::size_t(st.range(0))));
   (void)m.num_edges();
@@ -153,6 +210,7 @@ void BM_CheckInvariants(benchmark::State& st) {
 
 // Grid sizes: 16^3*6 = 24 576, 50^3*6 = 750 000, 70^3*6 = 2 058 000 tets.
 BENCHMARK(BM_Build)->Arg(16)->Arg(50)->Arg(70)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Build_SideBySide)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime()->ComputeStatistics("min", bench::min_of);
 BENCHMARK(BM_AllEdgeStars)->Arg(16)->Arg(50)->Arg(70)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EdgeCache)->Arg(16)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BoundarySurface)->Arg(16)->Arg(50)->Unit(benchmark::kMillisecond);

@@ -11,10 +11,15 @@
 
 #include "../predicates/testing/oracle.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <string>
+#include <thread>
 #include <random>
 #include <utility>
 #include <vector>
@@ -285,6 +290,192 @@ void batch_cgal_epick(benchmark::State& state) {
 }
 BENCHMARK(batch_cgal_epick)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 #endif
+
+// ---- Same-run anchors (issue 17) ------------------------------------------------------------------
+// Ours and its anchors in ONE benchmark, timed in alternating blocks (the order rotates every
+// iteration), so that a loaded machine slows them alike. Each block is timed with the calling thread's
+// CPU clock (preemption is not counted); the counters are the median over blocks:
+//   <contender>_ns     ns per call (scalar) or per tet of one mesh pass (map-check core),
+//   ratio_naive        volmap / naive double determinant (not robust: the cost floor),
+//   ratio_epick        volmap / CGAL Epick (filtered exact), when CGAL is found.
+//   anchor_orient3d_random         one orient3d call on random doubles in [-1,1]³ (stage A decides);
+//                                  naive is out of line (one call, like ours); CGAL is inlined.
+//   anchor_map_check_core/<threads> the exact positivity pass of a map check: input Kuhn grid
+//                                  56³·6 = 1 053 696 tets and its smooth deformation (the output),
+//                                  both signed and counted. ours = orient3d_tets over each mesh (with
+//                                  its O(V) census), naive = the plain determinant loop, epick = a
+//                                  CGAL::orientation loop on prebuilt points. 2 threads: the tets split
+//                                  in halves on std::threads for every contender (wall clock).
+
+double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+double wall_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Contenders of one anchor benchmark: a name and a block body returning a checksum.
+struct Contender {
+  const char* name;
+  std::function<long()> block;
+  std::vector<double> seconds;
+};
+
+void run_anchored(benchmark::State& state, std::vector<Contender>& cs, double items_per_block, bool wall) {
+  long acc = 0;
+  std::size_t rot = 0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      Contender& c = cs[(k + rot) % cs.size()];
+      const double t0 = wall ? wall_seconds() : thread_cpu_seconds();
+      acc += c.block();
+      c.seconds.push_back((wall ? wall_seconds() : thread_cpu_seconds()) - t0);
+    }
+    ++rot;
+  }
+  benchmark::DoNotOptimize(acc);
+  double ns[8] = {};
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    ns[k] = 1e9 * median(cs[k].seconds) / items_per_block;
+    state.counters[std::string(cs[k].name) + "_ns"] = ns[k];
+  }
+  // cs[0] is ours, cs[1] naive, cs[2] CGAL Epick when present.
+  state.counters["ratio_naive"] = ns[0] / ns[1];
+  if (cs.size() > 2) state.counters["ratio_epick"] = ns[0] / ns[2];
+}
+
+void anchor_orient3d_random(benchmark::State& state) {
+  constexpr int kRounds = 4;  // calls per block: kRounds · kTuples
+  const Tuples& t = tuples(Set::Random, 3, 4);
+  std::vector<Contender> cs;
+  cs.push_back({"volmap", [&t] {
+                  long s = 0;
+                  for (int r = 0; r < kRounds; ++r)
+                    for (int i = 0; i < kTuples; ++i) s += volmap::orient3d(t.p(i, 0), t.p(i, 1), t.p(i, 2), t.p(i, 3));
+                  return s;
+                }, {}});
+  cs.push_back({"naive", [&t] {
+                  long s = 0;
+                  for (int r = 0; r < kRounds; ++r)
+                    for (int i = 0; i < kTuples; ++i)
+                      s += or_::naive_sign(naive_o3(t.p(i, 0), t.p(i, 1), t.p(i, 2), t.p(i, 3)));
+                  return s;
+                }, {}});
+#ifdef VOLMAP_HAVE_CGAL
+  const CgalTuples& c = cgal_tuples(Set::Random, 3, 4);
+  cs.push_back({"epick", [&c] {
+                  long s = 0;
+                  for (int r = 0; r < kRounds; ++r)
+                    for (std::size_t i = 0; i < std::size_t(kTuples); ++i)
+                      s -= long(CGAL::orientation(c.p3[i * 5], c.p3[i * 5 + 1], c.p3[i * 5 + 2], c.p3[i * 5 + 3]));
+                  return s;
+                }, {}});
+#endif
+  run_anchored(state, cs, double(kRounds) * kTuples, false);
+}
+BENCHMARK(anchor_orient3d_random)->MinTime(1.0);
+
+struct MapPair {
+  std::vector<double> in, out;
+  std::vector<std::uint32_t> tets;
+#ifdef VOLMAP_HAVE_CGAL
+  std::vector<Epick::Point_3> in_pts, out_pts;
+#endif
+};
+const MapPair& map_pair() {
+  static MapPair p;
+  if (p.tets.empty()) {
+    or_::IndexedTets g = or_::kuhn_grid(kGrid, 1.0 / kGrid);
+    p.in = std::move(g.xyz);
+    p.tets = std::move(g.tets);
+    p.out.resize(p.in.size());
+    // 100·(x + 0.03·(sin 2y, sin 2z, sin 2x)): Jacobian I + (entries ≤ 0.06), every tet stays positive.
+    for (std::size_t v = 0; v < p.in.size() / 3; ++v) {
+      const double* q = &p.in[3 * v];
+      p.out[3 * v] = 100 * (q[0] + 0.03 * std::sin(2 * q[1]));
+      p.out[3 * v + 1] = 100 * (q[1] + 0.03 * std::sin(2 * q[2]));
+      p.out[3 * v + 2] = 100 * (q[2] + 0.03 * std::sin(2 * q[0]));
+    }
+#ifdef VOLMAP_HAVE_CGAL
+    for (std::size_t v = 0; v < p.in.size() / 3; ++v) {
+      p.in_pts.emplace_back(p.in[3 * v], p.in[3 * v + 1], p.in[3 * v + 2]);
+      p.out_pts.emplace_back(p.out[3 * v], p.out[3 * v + 1], p.out[3 * v + 2]);
+    }
+#endif
+  }
+  return p;
+}
+
+// Runs body(first, count) over the tets, on `threads` threads (1: the calling thread).
+long split_tets(std::size_t nt, int threads, const std::function<long(std::size_t, std::size_t)>& body) {
+  if (threads <= 1) return body(0, nt);
+  long other = 0;
+  const std::size_t half = nt / 2 / 2048 * 2048;
+  std::thread worker([&] { other = body(half, nt - half); });
+  const long mine = body(0, half);
+  worker.join();
+  return mine + other;
+}
+
+long plain_det_positive(const double* xyz, const std::uint32_t* tets, std::size_t nt) {
+  long positive = 0;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::uint32_t* v = tets + 4 * t;
+    positive += or_::naive_orient3d(xyz + 3 * std::size_t(v[0]), xyz + 3 * std::size_t(v[1]),
+                                    xyz + 3 * std::size_t(v[2]), xyz + 3 * std::size_t(v[3])) > 0;
+  }
+  return positive;
+}
+
+void anchor_map_check_core(benchmark::State& state) {
+  const int threads = int(state.range(0));
+  const MapPair& p = map_pair();
+  const std::size_t nt = p.tets.size() / 4, nv = p.in.size() / 3;
+  std::vector<Contender> cs;
+  cs.push_back({"volmap", [&p, nt, nv, threads] {
+                  if (threads == 1)
+                    return long(volmap::orient3d_tets(p.in.data(), nv, p.tets.data(), nt, nullptr).positive +
+                                volmap::orient3d_tets(p.out.data(), nv, p.tets.data(), nt, nullptr).positive);
+                  const volmap::Orient3dBatchFilter fi = volmap::orient3d_batch_filter(p.in.data(), nv);
+                  const volmap::Orient3dBatchFilter fo = volmap::orient3d_batch_filter(p.out.data(), nv);
+                  return split_tets(nt, threads, [&](std::size_t first, std::size_t count) {
+                    const std::uint32_t* t = p.tets.data() + 4 * first;
+                    return long(volmap::orient3d_tets(fi, p.in.data(), nv, t, count, nullptr).positive +
+                                volmap::orient3d_tets(fo, p.out.data(), nv, t, count, nullptr).positive);
+                  });
+                }, {}});
+  cs.push_back({"naive", [&p, nt, threads] {
+                  return split_tets(nt, threads, [&](std::size_t first, std::size_t count) {
+                    const std::uint32_t* t = p.tets.data() + 4 * first;
+                    return plain_det_positive(p.in.data(), t, count) + plain_det_positive(p.out.data(), t, count);
+                  });
+                }, {}});
+#ifdef VOLMAP_HAVE_CGAL
+  cs.push_back({"epick", [&p, nt, threads] {
+                  return split_tets(nt, threads, [&](std::size_t first, std::size_t count) {
+                    long positive = 0;
+                    for (std::size_t k = first; k < first + count; ++k) {
+                      const std::uint32_t* v = &p.tets[4 * k];
+                      positive += CGAL::orientation(p.in_pts[v[0]], p.in_pts[v[1]], p.in_pts[v[2]], p.in_pts[v[3]]) < 0;
+                      positive += CGAL::orientation(p.out_pts[v[0]], p.out_pts[v[1]], p.out_pts[v[2]], p.out_pts[v[3]]) < 0;
+                    }
+                    return positive;
+                  });
+                }, {}});
+#endif
+  run_anchored(state, cs, 2.0 * double(nt), threads > 1);
+  state.counters["tets"] = double(nt);
+}
+BENCHMARK(anchor_map_check_core)->Arg(1)->Arg(2)->MinTime(2.0)->UseRealTime();
 
 // Start-up sanity: the contenders agree with volmap on the data sets (wrong signs counted for naive).
 void sanity() {

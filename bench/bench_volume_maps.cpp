@@ -11,9 +11,12 @@
 #include <volmap/volume/tutte3d.hpp>
 
 #include "../tests/support/vmap_test_util.hpp"
+#include "anchor_volmap_metrics.hpp"
+#include "side_by_side.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -245,29 +248,66 @@ void BM_MapCheck_AllDegenerate(benchmark::State& state) {
                                                                benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_Metrics(benchmark::State& state, std::string name) {
-  const Pair* p = viewer_pair(name);
-  if (!p) {
-    state.SkipWithError("../shared/data absent");
-    return;
-  }
-  for (auto _ : state) benchmark::DoNotOptimize(compute_metrics(p->in, p->out).energy[0].mean);
-  state.counters["ns_per_tet"] = benchmark::Counter(double(p->in.num_tets()) * 1e-9,
-                                                    benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+// ---- Metrics side by side with VOLMAP's `metrics` (anchor_volmap_metrics.hpp: its algorithm, cinolib
+// reader and per-tet allocations, re-implemented for benchmarking only). Both sides run in the same
+// loop (side_by_side.hpp); ratio = ours / VOLMAP in process CPU time.
+//   Metrics          the computation alone (meshes already in memory, each side in its own layout);
+//   Metrics_EndToEnd what the tools do: parse both .mesh files, compute, format the text block; the
+//                    case fails unless both print the same block (VOLMAP's digits, volmap-reference.md §9).
+// The whole executables: `bench_volume_maps --volmap-metrics-anchor in.mesh out.mesh` runs the
+// anchor alone as a process (for /usr/bin/time -v next to `volmap-metrics in.mesh out.mesh`).
+struct AnchorPair {
+  anchor::VolmapMesh in, out;
+};
+const AnchorPair* anchor_pair(const std::string& name) {
+  static std::map<std::string, AnchorPair> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return &it->second;
+  const fs::path dir = kData / "volmap/viewer-samples";
+  AnchorPair p;
+  if (!anchor::read_mesh_like_cinolib((dir / (name + "_input.mesh")).c_str(), p.in) ||
+      !anchor::read_mesh_like_cinolib((dir / (name + "_output.mesh")).c_str(), p.out))
+    return nullptr;
+  return &cache.emplace(name, std::move(p)).first->second;
 }
 
-// End to end like the tool: parse both files + metrics (VOLMAP's metrics: 0.78 s on this pair).
+void BM_Metrics(benchmark::State& state, std::string name) {
+  const Pair* p = viewer_pair(name);
+  const AnchorPair* a = p ? anchor_pair(name) : nullptr;
+  if (!a) return state.SkipWithError("../shared/data absent");
+  bench::run_side_by_side(
+      state, [&] { benchmark::DoNotOptimize(compute_metrics(p->in, p->out).energy[0].mean); },
+      [&] { benchmark::DoNotOptimize(anchor::volmap_metrics(a->in, a->out, 100.0).energy[0][2]); });
+  state.counters["tets"] = double(p->in.num_tets());
+}
+
 void BM_Metrics_EndToEnd(benchmark::State& state, std::string name) {
   const fs::path dir = kData / "volmap/viewer-samples";
-  if (!fs::exists(dir / (name + "_input.mesh"))) {
-    state.SkipWithError("../shared/data absent");
-    return;
-  }
-  for (auto _ : state) {
-    const TetMeshData in = read_medit((dir / (name + "_input.mesh")).string());
-    const TetMeshData out = read_medit((dir / (name + "_output.mesh")).string());
-    benchmark::DoNotOptimize(compute_metrics(in, out).energy[0].mean);
-  }
+  const std::string in_path = (dir / (name + "_input.mesh")).string(), out_path = (dir / (name + "_output.mesh")).string();
+  if (!fs::exists(in_path)) return state.SkipWithError("../shared/data absent");
+  std::string ours_text, anchor_text;
+  bench::run_side_by_side(
+      state,
+      [&] {
+        const TetMeshData in = read_medit(in_path);
+        const TetMeshData out = read_medit(out_path);
+        ours_text = format_metrics_volmap(compute_metrics(in, out));
+      },
+      [&] {
+        anchor::VolmapMesh in, out;
+        anchor::read_mesh_like_cinolib(in_path.c_str(), in);
+        anchor::read_mesh_like_cinolib(out_path.c_str(), out);
+        anchor_text = anchor::format_volmap(anchor::volmap_metrics(in, out, 100.0));
+      });
+  if (ours_text != anchor_text) state.SkipWithError(("printed blocks differ:\n" + ours_text + "VOLMAP:\n" + anchor_text).c_str());
+}
+
+// The anchor as a process: prints VOLMAP's block for in.mesh -> out.mesh (exit 2 if unreadable).
+int run_anchor_process(const char* in_path, const char* out_path) {
+  anchor::VolmapMesh in, out;
+  if (!anchor::read_mesh_like_cinolib(in_path, in) || !anchor::read_mesh_like_cinolib(out_path, out)) return 2;
+  std::fputs(anchor::format_volmap(anchor::volmap_metrics(in, out, 100.0)).c_str(), stdout);
+  return 0;
 }
 
 }  // namespace
@@ -302,8 +342,17 @@ double min_of(const std::vector<double>& v) { return *std::min_element(v.begin()
 CHECK_CASE(bunny)
 CHECK_CASE(grid56)
 BENCHMARK(BM_MapCheck_AllDegenerate)->Arg(10)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Metrics, bunny, "bunny")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Metrics, duck, "duck")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Metrics_EndToEnd, bunny, "bunny")->Unit(benchmark::kMillisecond);
+#define SIDE_BY_SIDE(fn, name) \
+  BENCHMARK_CAPTURE(fn, name, #name)->Unit(benchmark::kMillisecond)->UseRealTime()->ComputeStatistics("min", bench::min_of)
+SIDE_BY_SIDE(BM_Metrics, bunny);
+SIDE_BY_SIDE(BM_Metrics, duck);
+SIDE_BY_SIDE(BM_Metrics_EndToEnd, bunny);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (argc == 4 && std::string(argv[1]) == "--volmap-metrics-anchor") return run_anchor_process(argv[2], argv[3]);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -40,10 +40,12 @@ seed() {
 seed fuzz_medit -name '*.mesh'
 seed fuzz_vtk -name '*.vtk'
 seed fuzz_vtu -name '*.vtu'
+seed fuzz_ovm -name '*.ovm'
 seed fuzz_boundary_map -path '*G1_*' -name '*.txt'
 seed fuzz_custom_domain -path '*custom_domains*'
 mkdir -p "$BUILD/corpus/fuzz_rationals" "$BUILD/corpus/fuzz_predicates" "$BUILD/corpus/fuzz_boundary_map" \
-         "$BUILD/corpus/fuzz_tet_mesh" "$BUILD/corpus/fuzz_surface" "$BUILD/corpus/fuzz_custom_domain"
+         "$BUILD/corpus/fuzz_tet_mesh" "$BUILD/corpus/fuzz_surface" "$BUILD/corpus/fuzz_custom_domain" \
+         "$BUILD/corpus/fuzz_msh" "$BUILD/corpus/fuzz_ovm"
 # Surfaces: the target's first byte picks the format (0 obj, 1 off, 2 stl, 3 ply), so seeds get that
 # byte prepended (small files only).
 if [ -d "$DATA" ]; then
@@ -63,6 +65,13 @@ printf 'n 0\nn 1\nn 2\nn 4\nnm 0 0 0\nnm 0 0 100\nnm 100 0 50\nnm 30 100 30\na 0
   > "$BUILD/corpus/fuzz_custom_domain/tet"
 printf 'n 0\nn 1\nn 2\nn 3\nn 4\nn 5\nn 6\nn 7\nnm 0 0 0\nnm 0 0 100\nnm 100 0 100\nnm 100 0 0\nnm 0 100 0\nnm 0 100 100\nnm 100 100 100\nnm 100 100 0\na 0 1\na 1 2\na 2 3\na 0 3\na 0 4\na 1 5\na 2 6\na 3 7\na 4 5\na 5 6\na 6 7\na 4 7\n' \
   > "$BUILD/corpus/fuzz_custom_domain/cube"
+# Gmsh: one tet plus a triangle, MSH 2.2 and 4.1 (ASCII; binary variants come from mutation).
+printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n2\n1 2 2 0 1 1 2 3\n2 4 2 7 1 1 2 3 4\n$EndElements\n' \
+  > "$BUILD/corpus/fuzz_msh/tet22"
+printf '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n1 0 0 0 1 1 1 1 7 0\n$EndEntities\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n' \
+  > "$BUILD/corpus/fuzz_msh/tet41"
+printf 'OVM ASCII\nVertices\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nEdges\n6\n0 1\n1 2\n0 2\n0 3\n1 3\n2 3\nFaces\n4\n3 0 2 5\n3 6 9 1\n3 4 10 7\n3 8 11 3\nPolyhedra\n1\n4 0 2 4 6\n' \
+  > "$BUILD/corpus/fuzz_ovm/tet"
 # TetMesh from arrays: byte 0 = vertex count, then 4 ids per tet (two tets sharing a face; a Kuhn cube).
 printf '\x05\x00\x01\x02\x03\x01\x00\x02\x04' > "$BUILD/corpus/fuzz_tet_mesh/two_tets"
 printf '\x08\x00\x01\x03\x07\x00\x01\x05\x07\x00\x02\x03\x07\x00\x02\x06\x07\x00\x04\x05\x07\x00\x04\x06\x07' > "$BUILD/corpus/fuzz_tet_mesh/kuhn_cube"

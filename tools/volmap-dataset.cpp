@@ -1,16 +1,23 @@
 // volmap-dataset — extend the benchmark (VOLMAP paper, Sections 6-7) in one command:
 //   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star]
-//                  [--jobs N] [--quality 1.414] [--max-volume V] [--json]
+//                  [--jobs N] [--quality 1.414 | --coarse] [--max-volume V] [--decimate F] [--keep-going]
+//                  [--keep-unrefined] [--json]
 // For each surface (.obj .off .stl .ply): tetrahedralize (which checks the surface first), run the
 // tet-mesh checks, compute every domain's boundary map on ONE mesh (as VOLMAP does), verify every map
 // exactly, then publish <dataset>/<group>/<name>.mesh and <group>_<dom>/<name>_<dom>.txt. Every step
 // is one of the volmap-* tools run as a child process; a surface that fails any step is skipped and
 // the reason goes to <dataset>/<group>_log.txt. Maps made before a later domain refines the mesh are
 // carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
+// Tet meshes (.mesh .vtk .vtu, VOLMAP-positive) in the folder are used as they are, without TetGen.
+// --decimate F first coarsens surfaces of more than F triangles to F (lib decimate). --keep-going
+// drops only the domains whose map fails (recorded per domain, the mesh it failed on kept in
+// <group>_failed/) and publishes the others. --keep-unrefined also publishes the mesh before any
+// surface-map split as <group>_unrefined/<name>.mesh (no benchmark group; for growth figures).
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
 #include "support/dataset.hpp"
+#include <volmap/tetgen/decimate.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/map_extension.hpp>
 #include "support/process.hpp"
@@ -47,7 +54,32 @@ struct SurfaceOutcome {
   bool ok = false;
   std::string reason;        // why it was skipped
   int refinement_passes = 0;
+  std::size_t faces = 0, decimated_faces = 0;  // input triangles; after --decimate (0 = not decimated)
+  std::size_t tetgen_tets = 0, tets = 0;       // after TetGen; published (after surface-map splits)
+  std::vector<std::pair<std::string, std::string>> failed_domains;  // (domain, reason) with --keep-going
 };
+
+struct DatasetOptions {
+  std::vector<std::string> domains;
+  std::string quality, max_volume;
+  bool coarse = false, keep_going = false, keep_unrefined = false;
+  std::size_t decimate = 0;  // 0 = never
+};
+
+// Writes the surface decimated to `faces` triangles into `work` when it has more, and returns the
+// path TetGen should read.
+fs::path decimated_input(const fs::path& surface, const fs::path& work, std::size_t faces, SurfaceOutcome& outcome) {
+  const volmap::SurfaceData s = volmap::read_surface(surface.string());
+  outcome.faces = s.num_triangles();
+  if (faces == 0 || s.num_triangles() <= faces) return surface;
+  volmap::DecimateOptions options;
+  options.target_faces = faces;
+  const auto d = volmap::decimate_surface(s, options);
+  outcome.decimated_faces = d.faces_after;
+  const fs::path out = work / (surface.stem().string() + "_decimated.off");
+  volmap::write_surface(out.string(), d.surface);
+  return out;
+}
 
 // Runs one tool; on failure returns its one-line reason (stderr), on success "".
 std::string run_step(const std::vector<std::string>& argv, const fs::path& work, const std::string& step) {
@@ -71,9 +103,31 @@ void copy_atomically(const fs::path& from, const fs::path& to) {
   volmap::write_text_atomically(to.string(), ss.str());
 }
 
+bool is_tet_mesh(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".mesh" || ext == ".vtk" || ext == ".vtu";
+}
+
+// Decimates (--decimate) and tetrahedralizes the surface into `mesh`; returns the failure or "".
+std::string tetrahedralize_step(const fs::path& surface, const fs::path& work, const fs::path& mesh,
+                                const DatasetOptions& opt, SurfaceOutcome& outcome) {
+  fs::path input;
+  try {
+    input = decimated_input(surface, work, opt.decimate, outcome);
+  } catch (const volmap::Error& e) {
+    return std::string("decimate failed: ") + e.what();
+  }
+  std::vector<std::string> tetgen = {(fs::path(tools_dir()) / "volmap-tetrahedralize").string(), input.string(),
+                                     mesh.string()};
+  if (opt.coarse) tetgen.push_back("--coarse");
+  else tetgen.insert(tetgen.end(), {"--quality", opt.quality});
+  if (!opt.max_volume.empty()) tetgen.insert(tetgen.end(), {"--max-volume", opt.max_volume});
+  return run_step(tetgen, work, "tetrahedralize");
+}
+
 SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset, const std::string& group,
-                               const std::vector<std::string>& domains, const std::string& quality,
-                               const std::string& max_volume) {
+                               const DatasetOptions& opt) {
   const fs::path tools(tools_dir());
   SurfaceOutcome outcome;
   outcome.name = surface.stem().string();
@@ -82,12 +136,17 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   fs::create_directories(work);
   const fs::path mesh = work / (outcome.name + ".mesh");
 
-  std::vector<std::string> tetgen = {(tools / "volmap-tetrahedralize").string(), surface.string(), mesh.string(),
-                                     "--quality", quality};
-  if (!max_volume.empty()) tetgen.insert(tetgen.end(), {"--max-volume", max_volume});
-  if (auto e = run_step(tetgen, work, "tetrahedralize"); !e.empty()) return outcome.reason = e, outcome;
+  if (is_tet_mesh(surface))
+    volmap::write_medit(mesh.string(), volmap::read_tet_mesh(surface.string()));  // used as is: no TetGen
+  else if (auto e = tetrahedralize_step(surface, work, mesh, opt, outcome); !e.empty())
+    return outcome.reason = e, outcome;
+  outcome.tetgen_tets = volmap::read_tet_mesh(mesh.string()).num_tets();
   if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check"); !e.empty())
     return outcome.reason = e, outcome;
+  if (opt.keep_unrefined) {
+    fs::create_directories(dataset / (group + "_unrefined"));
+    copy_atomically(mesh, dataset / (group + "_unrefined") / (outcome.name + ".mesh"));
+  }
 
   // One mesh for every domain: map the domains in turn; when a domain refines the mesh (midpoint
   // splits of boundary edges), the maps computed so far are carried onto the refined mesh by midpoint
@@ -95,6 +154,18 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   // carried sphere map, whose midpoints leave the sphere) is recomputed on the final mesh, which may
   // refine again: repeat, a bounded number of times.
   auto map_path = [&](const std::string& dom) { return work / (outcome.name + "_" + dom + ".txt"); };
+  std::vector<std::string> domains = opt.domains;
+  // --keep-going: the mesh the domain failed on (and its map, if one was written) are kept in
+  // <dataset>/<group>_failed/ to reproduce the failure; that folder is no benchmark group.
+  auto drop = [&](const std::string& dom, const std::string& reason) {
+    outcome.failed_domains.emplace_back(dom, reason);
+    domains.erase(std::find(domains.begin(), domains.end(), dom));
+    const fs::path kept = dataset / (group + "_failed");
+    fs::create_directories(kept);
+    copy_atomically(mesh, kept / (outcome.name + "_" + dom + ".mesh"));
+    if (fs::exists(map_path(dom))) copy_atomically(map_path(dom), kept / (outcome.name + "_" + dom + ".txt"));
+    fs::remove(map_path(dom));
+  };
   std::vector<std::string> pending = domains;
   constexpr int kMaxPasses = 6;
   for (int pass = 0; pass < kMaxPasses && !pending.empty(); ++pass) {
@@ -106,8 +177,11 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map_path(dom).string(),
                              "--refined", refined.string()},
                             work, "surface-map-" + dom);
-          !e.empty())
-        return outcome.reason = e, outcome;
+          !e.empty()) {
+        if (!opt.keep_going) return outcome.reason = e, outcome;
+        drop(dom, e);
+        continue;
+      }
       if (!fs::exists(refined)) continue;
       const auto refined_mesh = volmap::read_tet_mesh(refined.string());
       for (const auto& other : domains) {
@@ -126,7 +200,15 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
         pending.push_back(dom);
     }
   }
-  if (!pending.empty()) return outcome.reason = "maps did not verify after " + std::to_string(kMaxPasses) + " passes", outcome;
+  if (!pending.empty() && opt.keep_going)
+    for (const auto& dom : std::vector<std::string>(pending))
+      drop(dom, "map did not verify after " + std::to_string(kMaxPasses) + " passes: " +
+                    run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map_path(dom).string(),
+                              "--domain", dom},
+                             work, "surface-map-check-" + dom));
+  else if (!pending.empty())
+    return outcome.reason = "maps did not verify after " + std::to_string(kMaxPasses) + " passes", outcome;
+  if (domains.empty()) return outcome.reason = "no domain could be mapped", outcome;
   if (auto e = run_step({(tools / "volmap-tetmesh-check").string(), mesh.string()}, work, "tetmesh-check-final");
       !e.empty())
     return outcome.reason = e, outcome;
@@ -137,6 +219,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
     copy_atomically(work / (outcome.name + "_" + dom + ".txt"),
                     dataset / (group + "_" + dom) / (outcome.name + "_" + dom + ".txt"));
   }
+  outcome.tets = volmap::read_tet_mesh(mesh.string()).num_tets();
   copy_atomically(mesh, dataset / group / (outcome.name + ".mesh"));  // last: a mesh means a complete case
   fs::remove_all(work);
   outcome.ok = true;
@@ -148,23 +231,42 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
 int main(int argc, char** argv) {
   CLI::App app{"Turn closed genus-0 surfaces into a new VOLMAP group: tet meshes + verified boundary maps.",
                "volmap-dataset"};
-  std::string surfaces_dir, dataset_dir, group, domains_text = "cube,tet,pyr,octa,star", quality = "1.414", max_volume;
+  std::string surfaces_dir, dataset_dir, group, domains_text = "cube,tet,pyr,octa,star";
+  DatasetOptions opt;
+  opt.quality = "1.414";
   int jobs = 1;
   bool json = false;
-  app.add_option("surfaces_dir", surfaces_dir, "folder of .obj/.off/.stl/.ply surfaces")->required();
+  app.add_option("surfaces_dir", surfaces_dir,
+                 "folder of .obj/.off/.stl/.ply surfaces (and .mesh/.vtk/.vtu tet meshes, used as they are)")
+      ->required();
   app.add_option("dataset_dir", dataset_dir, "VOLMAP layout root to write into (created)")->required();
   app.add_option("--group", group, "group folder name, e.g. G7")->required();
   app.add_option("--domains", domains_text, "comma-separated domains (cube,tet,pyr,octa,star,sphere)");
   app.add_option("--jobs,-j", jobs, "surfaces processed in parallel")->check(CLI::Range(1, 64));
-  app.add_option("--quality", quality, "TetGen radius-edge bound (q switch), at least 1")
-      ->check(volmap_tools::finite_range(1.0, 1e300));
-  app.add_option("--max-volume", max_volume, "TetGen maximum tet volume (a switch)")
+  auto* quality_option = app.add_option("--quality", opt.quality, "TetGen radius-edge bound (q switch), at least 1")
+                              ->check(volmap_tools::finite_range(1.0, 1e300));
+  app.add_flag("--coarse", opt.coarse, "no quality refinement (TetGen without q): most tets touch the boundary")
+      ->excludes(quality_option);
+  app.add_option("--max-volume", opt.max_volume, "TetGen maximum tet volume (a switch)")
       ->check(volmap_tools::finite_non_negative());
+  app.add_option("--decimate", opt.decimate,
+                 "first decimate surfaces of more than this many triangles to this many (quadric edge collapses)")
+      ->check(CLI::Validator(
+          [](std::string& v) {  // 0 = never; a closed surface has at least 4 triangles
+            std::size_t n = 0;
+            return CLI::detail::lexical_cast(v, n) && (n == 0 || n >= 4) ? std::string()
+                                                                          : "must be 0 (never) or at least 4, got '" + v + "'";
+          },
+          "0 or >= 4"));
+  app.add_flag("--keep-unrefined", opt.keep_unrefined,
+               "also write the mesh before any surface-map split to <group>_unrefined/<name>.mesh");
+  app.add_flag("--keep-going", opt.keep_going,
+               "a domain whose map fails is dropped (reason in the log and JSON); the other domains are published");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     if (group.size() < 2 || group[0] != 'G' || group.find_first_not_of("0123456789", 1) != std::string::npos)
       throw volmap::Error(volmap::ErrorKind::BadInput, "--group must look like G<number>, got '" + group + "'");
-    std::vector<std::string> domains;
+    std::vector<std::string>& domains = opt.domains;
     {
       std::stringstream ss(domains_text);
       for (std::string d; std::getline(ss, d, ',');)
@@ -180,7 +282,7 @@ int main(int argc, char** argv) {
     for (const auto& entry : fs::directory_iterator(surfaces_dir)) {
       std::string ext = entry.path().extension().string();
       std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-      if (entry.is_regular_file() && (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply"))
+      if (entry.is_regular_file() && (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply" || is_tet_mesh(entry.path())))
         surfaces.push_back(entry.path());
     }
     std::sort(surfaces.begin(), surfaces.end());
@@ -193,7 +295,7 @@ int main(int argc, char** argv) {
     auto worker = [&] {
       for (std::size_t i; (i = next++) < surfaces.size();) {
         try {
-          outcomes[i] = process_surface(surfaces[i], dataset_dir, group, domains, quality, max_volume);
+          outcomes[i] = process_surface(surfaces[i], dataset_dir, group, opt);
         } catch (const std::exception& e) {  // one bad surface never stops the others
           outcomes[i].name = surfaces[i].stem().string();
           outcomes[i].reason = e.what();
@@ -215,7 +317,14 @@ int main(int argc, char** argv) {
     for (const auto& o : outcomes) {
       added += o.ok;
       log << o.name << "\t" << (o.ok ? "added" : "skipped") << "\t" << (o.ok ? "" : o.reason) << "\n";
-      list.push_back({{"name", o.name}, {"added", o.ok}, {"reason", o.reason}, {"passes", o.refinement_passes}});
+      nlohmann::json failed = nlohmann::json::array();
+      for (const auto& [dom, why] : o.failed_domains) {
+        log << o.name << "_" << dom << "\tdomain dropped\t" << why << "\n";
+        failed.push_back({{"domain", dom}, {"reason", why}});
+      }
+      list.push_back({{"name", o.name}, {"added", o.ok}, {"reason", o.reason}, {"passes", o.refinement_passes},
+                      {"faces", o.faces}, {"decimated_faces", o.decimated_faces}, {"tetgen_tets", o.tetgen_tets},
+                      {"tets", o.tets}, {"failed_domains", failed}});
     }
     volmap::write_text_atomically((fs::path(dataset_dir) / (group + "_log.txt")).string(), log.str());
     const int code = added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;

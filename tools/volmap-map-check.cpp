@@ -11,10 +11,12 @@
 // additionally every input tet is positive and (with --boundary) every boundary vertex sits exactly
 // on the map's position. With rationals files the check runs on exact rational coordinates; a missing
 // side is converted exactly from the mesh's doubles. Exit 0 certified, 1 not, 2 bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io.hpp>
 #include <volmap/check/map_check.hpp>
+#include <volmap/check/orientation.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -36,8 +38,8 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, boundary_path, rat_in_path, rat_out_path;
   bool absolute = false, json = false;
   std::size_t max_bad = 20;
-  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk or .vtu by extension)")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk or .vtu)")->required();
+  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk, .vtu, .msh or .ovm by extension)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu or .msh)")->required();
   app.add_option("--boundary", boundary_path, "boundary map: boundary vertices must sit exactly on it");
   app.add_option("--rationals-in", rat_in_path, "exact input coordinates (VOLMAP num/den file)");
   app.add_option("--rationals-out", rat_out_path, "exact output coordinates (VOLMAP num/den file)");
@@ -47,7 +49,8 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    const volmap::TetMeshData in = volmap::read_tet_mesh(in_path);
+    volmap_tools::InputMeshes inputs("volmap-map-check", &json);
+    const volmap::TetMeshData in = inputs.read(in_path);
     // A relative check of an input in the opposite orientation convention is VOLMAP's use case: such
     // an input passes with a note (and is never certified); any other problem refuses it, and so
     // does any problem at all when --absolute asks for a certificate.
@@ -57,7 +60,7 @@ int main(int argc, char** argv) {
       throw volmap::Error(volmap::ErrorKind::BadInput, in_path, 0,
                           "not a valid input tet mesh: " + verdict.reason() +
                               (verdict.valid_up_to_orientation ? " (--absolute certifies valid inputs only; without it the relative check runs)" : ""));
-    const volmap::TetMeshData out = volmap::read_tet_mesh(out_path);
+    const volmap::TetMeshData out = inputs.read(out_path);
     // The pair is checked first, so a mismatch is blamed on the mapped mesh, not on a later file.
     volmap_tools::naming_file(out_path + " (against " + in_path + ")", [&] { return volmap::match_connectivity(in, out); });
     volmap::BoundaryMap map;
@@ -106,6 +109,8 @@ int main(int argc, char** argv) {
       j["first_bad_tets"] = r.first_bad;
       j["input_all_positive"] = r.input_all_positive();
       if (!verdict.valid) j["input_problem"] = verdict.reason();
+      j["input_orientation"] = volmap::describe_orientation(r.input);
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.boundary_checked) {
         j["boundary_mismatches"] = r.boundary_mismatches;
         j["first_boundary_mismatches"] = r.first_boundary_mismatches;

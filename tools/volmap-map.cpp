@@ -3,13 +3,15 @@
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
 //              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local]   (cascade tuning, see volume_map.hpp)
 //              [--initial init.(mesh|vtk|vtu)]
-// in.mesh may be .mesh/.vtk/.vtu and must be a valid VOLMAP input (input_mesh.hpp: what
-// volmap-tetmesh-check accepts), else exit 2 naming the file and the problem. --initial starts from
+// in.mesh may be .mesh/.vtk/.vtu/.msh/.ovm and must be a valid VOLMAP input (input_mesh.hpp: what
+// volmap-tetmesh-check accepts), else exit 2 naming the file and the problem; an input in the
+// opposite convention, as Gmsh and OpenVolumeMesh files are, is refused with the sentence of
+// describe_orientation (flip it first with volmap-tetmesh-check --fix). --initial starts from
 // a given (possibly tangled) map instead of Tutte 3D: same vertex count and the same tets in the same
 // order as the input, boundary vertices bit-identical to the prescribed map (else exit 2). A map
 // positional of `-` takes the boundary map from the initial file's boundary vertices (requires
 // --initial).
-// out.mesh and --refined-input are written in the format of their extension (.mesh/.vtk/.vtu) with
+// out.mesh and --refined-input are written in the format of their extension (.mesh/.vtk/.vtu/.msh) with
 // the (refined) input's vertices and tets in the same order; every double in shortest round-trip
 // form, so the file reads back bit-identically. Refinement (chord splits, cone repair) happens only
 // when --refined-input is given (the refined source is written there; the pair has identical
@@ -22,6 +24,7 @@
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
 // Exit: 0 certified; 1 ran but not injective (the outputs are STILL written with the best map found,
 // so it can be inspected; it must not be used as a valid map); 2 usage or bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/check/map_check.hpp>
@@ -41,12 +44,12 @@ int main(int argc, char** argv) {
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
   bool ffm_rest_first = false, no_local = false;
   using volmap_tools::finite_non_negative;
-  app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu, a valid VOLMAP input)")->required();
+  app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
-  app.add_option("output", out_path, "output tet mesh (.mesh/.vtk/.vtu by extension; same tets/vertices as the (refined) input)")->required();
+  app.add_option("output", out_path, "output tet mesh (.mesh/.vtk/.vtu/.msh by extension; same tets/vertices as the (refined) input)")->required();
   app.add_option("--method", method, "ffm (default: Tutte → FFM → repair) or tlc (Du et al. 2020 baseline)")
       ->check(CLI::IsMember({"ffm", "tlc"}));
-  app.add_option("--refined-input", refined_path, "where to write the refined source (.mesh/.vtk/.vtu); refinement (chord splits, cone repair) is enabled only with this path");
+  app.add_option("--refined-input", refined_path, "where to write the refined source (.mesh/.vtk/.vtu/.msh); refinement (chord splits, cone repair) is enabled only with this path");
   app.add_option("--rationals", rationals_path, "also write the output coordinates as exact rationals (VOLMAP num/den)");
   app.add_option("--max-growth", max_growth, "tet growth budget of the cone repair (fraction of input tets)")
       ->check(finite_non_negative());
@@ -67,6 +70,7 @@ int main(int argc, char** argv) {
     if (map_path == "-" && initial_path.empty())
       throw volmap::Error(volmap::ErrorKind::BadInput, "map `-` needs --initial (the boundary map is taken from it)");
     volmap_tools::RunFiles files;
+    volmap_tools::InputMeshes inputs("volmap-map", &json);
     volmap::require_tet_mesh_extension(in_path);
     if (!initial_path.empty()) volmap::require_tet_mesh_extension(initial_path);
     files.input(in_path, "input mesh");
@@ -76,11 +80,11 @@ int main(int argc, char** argv) {
     volmap::AtomicOutput* refined_out = refined_path.empty() ? nullptr : &files.tet_mesh_output(refined_path, "--refined-input");
     volmap::AtomicOutput* rationals_out = rationals_path.empty() ? nullptr : &files.output(rationals_path, "--rationals");
 
-    const volmap::TetMeshData input = volmap_tools::read_input_tet_mesh(in_path);
+    const volmap::TetMeshData input = volmap_tools::read_input_tet_mesh(inputs, in_path);
     volmap_tools::require_moderate_coordinates(input.xyz, in_path);
     volmap::VolumeMapOptions opt;
     if (!initial_path.empty()) {
-      const volmap::TetMeshData initial = volmap::read_tet_mesh(initial_path);
+      const volmap::TetMeshData initial = inputs.read(initial_path);
       if (initial.num_vertices() != input.num_vertices() || initial.tets != input.tets)
         throw volmap::Error(volmap::ErrorKind::BadInput, initial_path, 0,
                             "the initial map must have the input's vertices and the same tets in the same order (" +
@@ -162,6 +166,7 @@ int main(int argc, char** argv) {
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.feasibility.infeasible_with_any_refinement())
         j["infeasible"] = "the boundary map encloses a non-positive volume: no injective map exists at any refinement";
       return volmap_tools::print_json(std::move(j), code);

@@ -12,6 +12,7 @@
 // every mesh is read through the format dispatcher. The CSV line and the .vtu are written together
 // or not at all. Exit 0 when computed (also for maps with inverted tets: this tool measures, it does
 // not certify), 2 on bad or mismatched input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -38,8 +39,8 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, csv_path, vtu_path, original_path;
   double upper = 100.0;
   bool json = false, emulate_singular = false;
-  app.add_option("in.mesh", in_path, "source tet mesh (.mesh/.vtk/.vtu, a valid VOLMAP input)")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (.mesh/.vtk/.vtu; same vertices and tets)")->required();
+  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk, .vtu, .msh or .ovm; a valid VOLMAP input)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu, .msh or .ovm)")->required();
   app.add_option("--upper", upper, "energy clamp upper bound (default 100, at least 6)")
       ->check(volmap_tools::finite_range(6.0, 1e300));
   app.add_flag("--json", json, "print one JSON object");
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     volmap_tools::RunFiles files;
+    volmap_tools::InputMeshes inputs("volmap-metrics", &json);
     for (const std::string* p : {&in_path, &out_path}) volmap::require_tet_mesh_extension(*p);
     if (!original_path.empty()) volmap::require_tet_mesh_extension(original_path);
     if (!vtu_path.empty() && volmap::tet_mesh_format(vtu_path) != volmap::TetMeshFormat::Vtu)
@@ -65,11 +67,11 @@ int main(int argc, char** argv) {
     files.input(original_path, "--original mesh");
     volmap::AtomicOutput* csv_out = csv_path.empty() ? nullptr : &files.output(csv_path, "--csv file");  // appended to
     volmap::AtomicOutput* vtu_out = vtu_path.empty() ? nullptr : &files.output(vtu_path, "--vtu output");
-    const volmap::TetMeshData in = volmap_tools::read_input_tet_mesh(in_path);
-    const volmap::TetMeshData out = volmap::read_tet_mesh(out_path);
+    const volmap::TetMeshData in = volmap_tools::read_input_tet_mesh(inputs, in_path);
+    const volmap::TetMeshData out = inputs.read(out_path);
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
-      const volmap::TetMeshData original = volmap_tools::read_input_tet_mesh(original_path);
+      const volmap::TetMeshData original = volmap_tools::read_input_tet_mesh(inputs, original_path);
       original_tets = original.num_tets();
       original_vertices = original.num_vertices();
     }
@@ -119,6 +121,7 @@ int main(int argc, char** argv) {
     const double total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (json) {
       nlohmann::json j;
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       j["input"] = in_path;
       j["output"] = out_path;
       j["num_tets"] = r.num_tets;

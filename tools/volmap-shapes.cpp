@@ -1,5 +1,5 @@
 // volmap-shapes — write the built-in genus-0 demo surfaces (procedural, no downloads).
-//   volmap-shapes <out_dir> [--names ellipsoid,bumpy,...] [--subdivisions 3] [--format off] [--json]
+//   volmap-shapes <out_dir> [--names ellipsoid,bumpy,... | --thin] [--subdivisions 3] [--format off] [--json]
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io_surface.hpp>
@@ -11,9 +11,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Write procedurally generated closed genus-0 surfaces (the demo's built-in data).", "volmap-shapes"};
   std::string out_dir, names, format = "off";
   int subdivisions = 3;
-  bool json = false;
+  bool json = false, thin = false;
   app.add_option("out_dir", out_dir, "folder to write <name>.<format> into (created)")->required();
-  app.add_option("--names", names, "comma-separated subset of: ellipsoid,bumpy,peanut,rounded_box,spiky,banana");
+  auto* names_option = app.add_option(
+      "--names", names, "comma-separated subset of: ellipsoid,bumpy,peanut,rounded_box,spiky,banana (demo) or thin-feature shapes");
+  app.add_flag("--thin", thin, "all thin-feature shapes (tentacles, limbs, fins, plate, spiky_star, dumbbell, calibration_cube, variants)")
+      ->excludes(names_option);
   app.add_option("--subdivisions", subdivisions, "icosphere subdivisions (20*4^s triangles)")->check(CLI::Range(0, 7));
   app.add_option("--format", format, "off, obj, stl or ply")->check(CLI::IsMember({"off", "obj", "stl", "ply"}));
   app.add_flag("--json", json, "print one JSON object");
@@ -28,7 +31,7 @@ int main(int argc, char** argv) {
         cur += c;
       }
     }
-    if (selected.empty()) selected = volmap::builtin_shape_names();
+    if (selected.empty()) selected = thin ? volmap::thin_shape_names() : volmap::builtin_shape_names();
     // Every surface is made first (unknown names refused before anything is created), then all files
     // are written together (none on any error).
     std::vector<volmap::SurfaceData> surfaces;

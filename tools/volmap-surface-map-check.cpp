@@ -2,6 +2,7 @@
 // The exact surface-map sanity check (see <volmap/surface/surface_map_check.hpp>) of a valid VOLMAP
 // input mesh (input_mesh.hpp; else exit 2 naming it). Exit 0 = valid,
 // 1 = check failed (inverted/degenerate cones, coverage, off-domain points, corners), 2 = bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
   std::string mesh_path, map_path, domain_arg;
   bool json = false, either_sign = false;
   double tolerance = 0;
-  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm)")->required();
   app.add_option("map", map_path, "boundary map: one 'vid x y z' line per boundary vertex")->required();
   app.add_option("--domain", domain_arg, "cube|tet|pyr|octa|star|sphere or a custom domain file: also check that "
                                          "points lie on the domain and corners hit their targets exactly");
@@ -34,14 +35,14 @@ int main(int argc, char** argv) {
     std::optional<volmap::Domain> domain;
     const bool sphere = domain_arg == "sphere" || domain_arg == "SPHERE";
     if (!domain_arg.empty() && !sphere) domain = volmap_tools::domain_from_name_or_file(domain_arg);
-    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(mesh_path);
+    volmap_tools::InputMeshes inputs("volmap-surface-map-check", &json);
+    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::SurfaceMapCheckOptions opt;
     opt.position_tolerance = tolerance;
     opt.accept_either_sign = either_sign;
-    if (sphere) {  // the sphere of volmap-surface-map: centre (50,50,50) is the kernel, radius 50
-      opt.override_kernel = true;
-      opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+    if (sphere) {  // the sphere of volmap-surface-map (centre (50,50,50), radius 50); kernel = centroid
+      opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
       opt.sphere_radius = volmap::kSphereRadius;
     }
     const auto r = volmap_tools::naming_file(
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
         j["corners_exact"] = r.corners_exact;
       }
       if (!r.ok) j["reason"] = r.reason;
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       return volmap_tools::print_json(std::move(j), code);
     } else {
       std::cout << "boundary: " << r.boundary_vertices << " vertices, " << r.boundary_triangles << " triangles; map: "

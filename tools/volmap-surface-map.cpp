@@ -8,6 +8,7 @@
 // written file and checked exactly again (same check, tolerance for 6-decimal points) and refused
 // (exit 1, nothing written) when rounding breaks it.
 // Exit 0 = map written; 1 = mapping or verification failed (nothing written); 2 = bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
@@ -25,11 +26,11 @@ int main(int argc, char** argv) {
   std::string domain_name, mesh_path, map_path, domain_file, refined_path;
   bool json = false, volmap_precision = false;
   app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
-  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu, a valid VOLMAP input)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
   app.add_option("--refined", refined_path,
-                 "where to write the refined tet mesh (.mesh/.vtk/.vtu) when edges are split (default "
+                 "where to write the refined tet mesh (.mesh/.vtk/.vtu/.msh) when edges are split (default "
                  "<map without extension>_in.mesh)");
   app.add_flag("--volmap-precision", volmap_precision,
                "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
@@ -55,13 +56,14 @@ int main(int argc, char** argv) {
                     "_in.mesh";
     }
     volmap_tools::RunFiles files;
+    volmap_tools::InputMeshes inputs("volmap-surface-map", &json);
     volmap::require_tet_mesh_extension(mesh_path);
     files.input(mesh_path, "input mesh");
     files.input(domain_file, "--domain file");
     volmap::AtomicOutput& map_out = files.output(map_path, "output map");
     volmap::AtomicOutput& refined = files.tet_mesh_output(refined_out, "refined mesh");
 
-    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(mesh_path);
+    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     volmap::SurfaceMapResult r =
         volmap_tools::naming_file(mesh_path, [&] { return volmap::map_surface_to_domain(mesh, domain); });
     if (sphere)
@@ -74,8 +76,8 @@ int main(int argc, char** argv) {
       const volmap::BoundaryMap written = volmap::read_boundary_map(map_out.temporary_path());
       volmap::SurfaceMapCheckOptions opt;
       if (sphere) {
-        opt.override_kernel = true;
-        opt.kernel = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+        // the same criterion as volmap-surface-map-check --domain sphere
+        opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
         opt.sphere_radius = volmap::kSphereRadius;
       }
       const volmap::SurfaceMapCheckResult c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
@@ -93,21 +95,23 @@ int main(int argc, char** argv) {
     files.commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (json) {
-      return volmap_tools::print_json(
-          {{"domain", sphere ? std::string("sphere") : domain.name},
-           {"map", map_path},
-           {"refined_mesh", refined_out.empty() ? nlohmann::json(nullptr) : nlohmann::json(refined_out)},
-           {"input_vertices", mesh.num_vertices()},
-           {"added_vertices", r.added_vertices},
-           {"tets", r.mesh.num_tets()},
-           {"boundary_vertices", r.map.size()},
-           {"node_vertices", r.node_vertices},
-           {"collided_nodes", r.collided_nodes},
-           {"check_positive", r.check.positive},
-           {"check_triangles", r.check.boundary_triangles},
-           {"precision", volmap_precision ? "volmap6" : "full"},
-           {"seconds", seconds}},
-          volmap_tools::kExitOk);
+      nlohmann::json j{{"domain", sphere ? std::string("sphere") : domain.name},
+                       {"map", map_path},
+                       {"refined_mesh", refined_out.empty() ? nlohmann::json(nullptr) : nlohmann::json(refined_out)},
+                       {"input_vertices", mesh.num_vertices()},
+                       {"added_vertices", r.added_vertices},
+                       {"tets", r.mesh.num_tets()},
+                       {"boundary_vertices", r.map.size()},
+                       {"node_vertices", r.node_vertices},
+                       {"collided_nodes", r.collided_nodes},
+                       {"attempt", r.attempt},
+                       {"failed_attempts", r.failed_attempts},
+                       {"check_positive", r.check.positive},
+                       {"check_triangles", r.check.boundary_triangles},
+                       {"precision", volmap_precision ? "volmap6" : "full"},
+                       {"seconds", seconds}};
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
+      return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
     }
     std::cout << "domain " << (sphere ? "sphere" : domain.name) << ": " << r.map.size() << " boundary vertices, +"
               << r.added_vertices << " vertices, exact check " << r.check.positive << "/" << r.check.boundary_triangles

@@ -1,19 +1,23 @@
-// volmap-tetmesh-check <in.mesh|.vtk|.vtu> [--fix out.mesh] [--json] [--log checks.csv]
+// volmap-tetmesh-check <in.mesh|.vtk|.vtu|.msh|.ovm> [--fix out.mesh] [--json] [--log checks.csv]
 // The seven VOLMAP input checks (volmap-reference.md §8 `tetmesh_checks`, done exactly on every tet):
 // orientation, volume, genus, components, manifold, closed, self_intersections. One line per check
-// (PASSED/FAILED with figures) or, with --json, one JSON object.
-// --fix out (.mesh/.vtk/.vtu): when the mesh is coherently opposite (no tet with orient3d > 0), writes
-// it with local vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex order,
-// tet order and labels kept), checks the flipped mesh (the file holds exactly these numbers: writers
-// round-trip bit-exactly) and writes it only when it passes every check; refuses (exit 1, nothing
-// written) when the signs are mixed or another check still fails. A mesh already in the VOLMAP
-// convention is written unchanged (when it passes).
+// (PASSED/FAILED with figures) or, with --json, one JSON object. The orientation line says in words
+// which convention the tets are in (describe_orientation): Gmsh and OpenVolumeMesh files, read as
+// they are, are in the opposite one. Reader notes (skipped Gmsh elements, dropped nodes) go to stderr,
+// or under "input_notes" with --json.
+// --fix out (.mesh/.vtk/.vtu/.msh): when the mesh is coherently opposite (no tet with orient3d > 0),
+// writes it with local vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex
+// order, tet order and labels kept), checks the flipped mesh (the file holds exactly these numbers:
+// writers round-trip bit-exactly) and writes it only when it passes every check; refuses (exit 1,
+// nothing written) when the signs are mixed or another check still fails. A mesh already in the
+// VOLMAP convention is written unchanged (when it passes).
 // A surface (.off/.obj/.stl/.ply, read by read_surface) gets the five surface checks instead
 // (check_surface: no orientation/volume).
 // --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order; tet
 // meshes only). The log and the fixed mesh are written together or not at all.
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -68,7 +72,8 @@ Json tet_report_json(const volmap::TetMeshCheckReport& r) {
                {{"class", volmap::to_string(r.orientation)},
                 {"positive", r.signs.positive},
                 {"negative", r.signs.negative},
-                {"zero", r.signs.zero}}},
+                {"zero", r.signs.zero},
+                {"summary", r.check("orientation").detail}}},
               {"checks", checks_json(r.checks)},
               {"topology",
                {{"boundary_faces", t.num_boundary_faces},
@@ -120,7 +125,7 @@ int main(int argc, char** argv) {
                "volmap-tetmesh-check"};
   std::string input, fix_output;
   bool json = false;
-  app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu) or surface (.off, .obj, .stl, .ply)")->required();
+  app.add_option("input", input, "tet mesh (.mesh, .vtk, .vtu, .msh, .ovm) or surface (.off, .obj, .stl, .ply)")->required();
   app.add_option("--fix", fix_output,
                  "write the mesh flipped to the VOLMAP convention (v0<->v1 in every tet) when it is coherently "
                  "opposite (a mesh already positive is written unchanged); refused (exit 1, nothing written) when "
@@ -176,7 +181,8 @@ int main(int argc, char** argv) {
           return finish(ok, std::move(j));
         }
 
-        volmap::TetMeshData mesh = volmap::read_tet_mesh(input);
+        volmap_tools::InputMeshes inputs("volmap-tetmesh-check", &json);
+        volmap::TetMeshData mesh = inputs.read(input);
         const double read_ms = ms_since(t0);
         const auto report = volmap_tools::naming_file(input, [&] { return volmap::check_tet_mesh(mesh); });
         const double check_ms = ms_since(t0) - read_ms;
@@ -186,6 +192,7 @@ int main(int argc, char** argv) {
           log_line += std::string("; ") + (report.check(key).passed ? "1" : "0");
         Json j;
         if (json) j = Json{{"input", input}, {"kind", "tet_mesh"}, {"report", tet_report_json(report)}};
+        if (json && !inputs.empty()) j["input_notes"] = inputs.json();
         if (!json) {
           std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
           print_checks(report.checks);
@@ -197,10 +204,7 @@ int main(int argc, char** argv) {
           fix["output"] = fix_output;
           if (report.orientation == volmap::OrientationClass::Mixed ||
               report.orientation == volmap::OrientationClass::Empty) {
-            const std::string why = report.orientation == volmap::OrientationClass::Mixed
-                                        ? "orientation is mixed (" + std::to_string(report.signs.positive) + " positive, " +
-                                              std::to_string(report.signs.negative) + " negative): a global flip cannot fix it"
-                                        : "no tet has a non-zero volume";
+            const std::string why = volmap::describe_orientation(report.signs, "--fix");
             fix_out->drop();
             fix["written"] = false;
             fix["reason"] = "refused: " + why;

@@ -1,8 +1,9 @@
-// volmap-tetrahedralize <surface.{obj,off,stl,ply}> <out.{mesh,vtk,vtu}> [--quality 1.414] [--max-volume V] [--json]
+// volmap-tetrahedralize <surface.{obj,off,stl,ply}> <out.{mesh,vtk,vtu,msh}> [--quality 1.414 | --coarse]
+//                       [--max-volume V] [--json]
 // Checks the surface (closed, manifold, one component, genus 0, no self-intersections, extent within
 // what TetGen's arithmetic handles), tetrahedralizes it with TetGen (p q<quality> Y, boundary
-// preserved), checks the result is a valid VOLMAP input (input_mesh.hpp) and writes it in the format
-// of out's extension.
+// preserved; --coarse: p Y, no quality refinement), checks the result is a valid VOLMAP input
+// (input_mesh.hpp) and writes it in the format of out's extension.
 // Exit 0 = written; 1 = surface refused (topology) or TetGen failed (self-intersections, ...); 2 = usage/IO.
 #include "support/tool_common.hpp"
 
@@ -46,11 +47,13 @@ int main(int argc, char** argv) {
   volmap::TetrahedralizeOptions opt;
   bool json = false;
   app.add_option("surface", in_path, "input surface (.obj, .off, .stl ASCII/binary, .ply ASCII/binary)")->required();
-  app.add_option("out", out_path, "output tet mesh (.mesh, .vtk or .vtu by extension)")->required();
+  app.add_option("out", out_path, "output tet mesh (.mesh, .vtk, .vtu or .msh by extension)")->required();
   app.add_option("--quality", opt.quality, "radius-edge ratio bound (TetGen q), default 1.414, at least 1")
       ->check(volmap_tools::finite_range(1.0, 1e300));
   app.add_option("--max-volume", opt.max_volume, "maximum tet volume (TetGen a), default none (0)")
       ->check(volmap_tools::finite_non_negative());
+  app.add_flag("--coarse", opt.coarse, "no quality refinement (TetGen without q): few tets, most touching the boundary")
+      ->excludes("--quality");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();

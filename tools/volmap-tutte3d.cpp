@@ -2,10 +2,11 @@
 //   volmap-tutte3d <in.mesh> <map.txt> <out.mesh> [--weights uniform] [--json]
 // Refuses an input that is not a valid VOLMAP input mesh (input_mesh.hpp) and a map that does not
 // match its boundary, solves the uniform Laplacian with the boundary fixed, writes the map atomically
-// in the format of out's extension (even when it inverts tets: it is a baseline), then reads the
+// in the format of out's extension (.mesh/.vtk/.vtu/.msh; even when it inverts tets), then reads the
 // written file back and certifies it with check_map (orient3d > 0 for every tet in the input's vertex
 // order, boundary vertices bit-identical to the map). Exit 0 iff certified injective, 1 otherwise,
 // 2 on bad input.
+#include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
 #include <volmap/io/io.hpp>
@@ -20,20 +21,21 @@ int main(int argc, char** argv) {
   app.name("volmap-tutte3d");
   std::string in_path, map_path, out_path, weights = "uniform";
   bool json = false;
-  app.add_option("in.mesh", in_path, "input tet mesh (.mesh, .vtk or .vtu; a valid VOLMAP input)")->required();
+  app.add_option("in.mesh", in_path, "input tet mesh (.mesh, .vtk, .vtu, .msh or .ovm; a valid VOLMAP input)")->required();
   app.add_option("map.txt", map_path, "boundary map (vid x y z, 0-based)")->required();
-  app.add_option("out.mesh", out_path, "output map (.mesh, .vtk or .vtu by extension; same vertices and tets)")->required();
+  app.add_option("out.mesh", out_path, "output map (.mesh, .vtk, .vtu or .msh by extension; same vertices and tets)")->required();
   app.add_option("--weights", weights, "Laplacian weights (only 'uniform')")->check(CLI::IsMember({"uniform"}));
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     volmap_tools::RunFiles files;
+    volmap_tools::InputMeshes inputs("volmap-tutte3d", &json);
     volmap::require_tet_mesh_extension(in_path);
     files.input(in_path, "input mesh");
     files.input(map_path, "boundary map");
     volmap::AtomicOutput& out = files.tet_mesh_output(out_path, "output map");
-    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(in_path);
+    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, in_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::validate_boundary_map(map, mesh, map_path);
     volmap_tools::require_moderate_coordinates(map.xyz, map_path);
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
 
     if (json) {
       nlohmann::json j;
+      if (!inputs.empty()) j["input_notes"] = inputs.json();
       j["injective"] = injective;
       j["certified_on"] = "the written file, read back";
       j["input"] = in_path;

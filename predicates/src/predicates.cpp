@@ -19,6 +19,7 @@
 #include <volmap/predicates.hpp>
 
 #include "exact.hpp"
+#include "layers.hpp"
 #include "fp_env.hpp"
 #include "expansion.hpp"
 
@@ -48,8 +49,6 @@ constexpr double kO2ErrC = (9.0 + 64.0 * kEps) * kEps * kEps;
 constexpr double kResultErr = (3.0 + 8.0 * kEps) * kEps;
 constexpr double kIcErrA = (10.0 + 104.0 * kEps) * kEps;
 constexpr double kIsErrA = (16.0 + 232.0 * kEps) * kEps;
-// L1 static filter constant (CGAL Static_filters/Orientation_3, geogram PCK, TetGen/HXT).
-constexpr double kO3Static = 5.1107127829973299e-15;
 // Stage A assumes no overflow: every accepted threshold requires a permanent below this bound (then
 // no partial sum of the determinant can overflow either).
 constexpr double kPermanentMax = 0x1p1000;
@@ -437,15 +436,12 @@ __attribute__((always_inline)) inline int insphere_body(const double* a, const d
 }  // namespace
 
 // -----------------------------------------------------------------------------------------------
-// Public scalar predicates: one MXCSR check per call (fp_env.hpp), then the body.
+// Public scalar predicates: one MXCSR check per call (fp_env.hpp), then the body. orient3d is in
+// orient3d.cpp (a filter that is valid in every environment comes first).
 
 int orient2d(const double* a, const double* b, const double* c) {
   VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient2d_body(a, b, c));
   return orient2d_body(a, b, c);
-}
-int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_body(a, b, c, d));
-  return orient3d_body(a, b, c, d);
 }
 int incircle(const double* a, const double* b, const double* c, const double* d) {
   VOLMAP_REQUIRE_DEFAULT_FP_ENV(incircle_body(a, b, c, d));
@@ -476,7 +472,7 @@ int FpEnvironmentScope::orient2d(const double* a, const double* b, const double*
   return orient2d_body(a, b, c);
 }
 int FpEnvironmentScope::orient3d(const double* a, const double* b, const double* c, const double* d) const {
-  return orient3d_body(a, b, c, d);
+  return volmap::orient3d(a, b, c, d);  // its fast path needs no check (orient3d.cpp)
 }
 int FpEnvironmentScope::incircle(const double* a, const double* b, const double* c, const double* d) const {
   return incircle_body(a, b, c, d);
@@ -508,150 +504,16 @@ int insphere_checked(const double* a, const double* b, const double* c, const do
 }
 
 // -----------------------------------------------------------------------------------------------
-// Batch orient3d over an indexed tet mesh.
-//   L0 once: finiteness, per-axis extents Δ_k = fl(max_k − min_k) (rounding is monotone, so every
-//      rounded coordinate difference satisfies |fl(p−q)| ≤ Δ_k), and the exponent census (all nonzero
-//      |coordinates| in [2^-142, 2^201] ⇒ "safe": L1–L3 are valid for every tet without guards).
-//   Per tet: L1 static filter (one compare), then stage A, zero-column shortcut, L3. No allocation.
+// Entry points for orient3d.cpp and orient3d_tets.cpp (layers.hpp).
+namespace detail {
 
-namespace {
-
-struct MeshCensus {
-  bool finite = true;
-  bool safe = true;
-  double extent[3] = {0, 0, 0};
-};
-
-MeshCensus census_portable(const double* xyz, std::size_t num_vertices) {
-  MeshCensus c;
-  if (num_vertices == 0) return c;
-  // Branch-free reductions over kLanes independent accumulator sets (vertex v goes to lane v mod
-  // kLanes), so the min/max dependency chains overlap instead of serialising the loop on their
-  // latency (without -ffast-math the compiler may not reassociate them itself). Magnitudes are compared
-  // as integers: with the sign bit cleared, the bit pattern of a double orders like its value, and the
-  // inf/NaN patterns lie above every finite one, so one integer maximum yields both finiteness and
-  // max |x|; zeros map to ~0 for the smallest nonzero magnitude. min/max are exact in any order.
-  constexpr int kLanes = 4;
-  constexpr std::uint64_t kAbsMask = 0x7fffffffffffffffull, kInfBits = 0x7ff0000000000000ull;
-  double lo[kLanes][3], hi[kLanes][3];
-  std::uint64_t max_bits[kLanes], min_nz_bits[kLanes];
-  for (int j = 0; j < kLanes; ++j) {
-    for (int k = 0; k < 3; ++k) {
-      lo[j][k] = HUGE_VAL;
-      hi[j][k] = -HUGE_VAL;
-    }
-    max_bits[j] = 0;
-    min_nz_bits[j] = ~std::uint64_t(0);
-  }
-  auto update = [&](int j, const double* p) {
-    for (int k = 0; k < 3; ++k) {
-      const double x = p[k];
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      bits &= kAbsMask;
-      lo[j][k] = x < lo[j][k] ? x : lo[j][k];
-      hi[j][k] = x > hi[j][k] ? x : hi[j][k];
-      max_bits[j] = bits > max_bits[j] ? bits : max_bits[j];
-      const std::uint64_t nz = bits == 0 ? ~std::uint64_t(0) : bits;
-      min_nz_bits[j] = nz < min_nz_bits[j] ? nz : min_nz_bits[j];
-    }
-  };
-  const std::size_t whole = num_vertices / kLanes * kLanes;
-  for (std::size_t v = 0; v < whole; v += kLanes)
-    for (int j = 0; j < kLanes; ++j) update(j, xyz + 3 * (v + j));
-  for (std::size_t v = whole; v < num_vertices; ++v) update(0, xyz + 3 * v);
-  for (int j = 1; j < kLanes; ++j) {
-    for (int k = 0; k < 3; ++k) {
-      lo[0][k] = lo[j][k] < lo[0][k] ? lo[j][k] : lo[0][k];
-      hi[0][k] = hi[j][k] > hi[0][k] ? hi[j][k] : hi[0][k];
-    }
-    max_bits[0] = max_bits[j] > max_bits[0] ? max_bits[j] : max_bits[0];
-    min_nz_bits[0] = min_nz_bits[j] < min_nz_bits[0] ? min_nz_bits[j] : min_nz_bits[0];
-  }
-  auto bits_of = [](double x) {
-    std::uint64_t b;
-    std::memcpy(&b, &x, sizeof b);
-    return b;
-  };
-  c.finite = max_bits[0] < kInfBits;
-  c.safe = c.finite && max_bits[0] <= bits_of(0x1p201) && min_nz_bits[0] >= bits_of(0x1p-142);
-  for (int k = 0; k < 3; ++k) c.extent[k] = hi[0][k] - lo[0][k];
-  return c;
+int orient3d_guarded(const double* a, const double* b, const double* c, const double* d) {
+  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_body(a, b, c, d));
+  return orient3d_body(a, b, c, d);
 }
-
-#if defined(__SSE2__)
-// SSE2 census: the coordinates are read as consecutive pairs, so with a stride of 6 doubles (two
-// vertices) the pairs are (x,y), (z,x), (y,z) and three lo/hi accumulator pairs track fixed axes.
-// Finiteness: x − x is NaN exactly for ±inf/NaN (cmpunord mask OR-ed up). With finite input, FP max of
-// |x| and min of the nonzero |x| (zeros replaced by +inf) are exact.
-MeshCensus census(const double* xyz, std::size_t num_vertices) {
-  if (num_vertices < 8) return census_portable(xyz, num_vertices);
-  const std::size_t pairs6 = num_vertices / 2;  // groups of 2 vertices = 6 doubles = 3 pairs
-  const __m128d inf = _mm_set1_pd(HUGE_VAL), abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
-  const __m128d zero = _mm_setzero_pd();
-  const __m128d minus_inf = _mm_set1_pd(-HUGE_VAL);
-  __m128d lo[3] = {inf, inf, inf}, hi[3] = {minus_inf, minus_inf, minus_inf};
-  __m128d max_abs[3] = {zero, zero, zero}, min_nz[3] = {inf, inf, inf}, bad[3] = {zero, zero, zero};
-  for (std::size_t g = 0; g < pairs6; ++g) {
-    const double* p = xyz + 6 * g;
-    for (int j = 0; j < 3; ++j) {
-      const __m128d x = _mm_loadu_pd(p + 2 * j);
-      lo[j] = _mm_min_pd(x, lo[j]);
-      hi[j] = _mm_max_pd(x, hi[j]);
-      const __m128d ax = _mm_and_pd(x, abs_mask);
-      max_abs[j] = _mm_max_pd(ax, max_abs[j]);
-      const __m128d is_zero = _mm_cmpeq_pd(ax, zero);
-      min_nz[j] = _mm_min_pd(_mm_or_pd(_mm_and_pd(is_zero, inf), _mm_andnot_pd(is_zero, ax)), min_nz[j]);
-      bad[j] = _mm_or_pd(bad[j], _mm_cmpunord_pd(_mm_sub_pd(x, x), zero));
-    }
-  }
-  double l[3][2], h[3][2], ma[3][2], mn[3][2], b[3][2];
-  for (int j = 0; j < 3; ++j) {
-    _mm_storeu_pd(l[j], lo[j]);
-    _mm_storeu_pd(h[j], hi[j]);
-    _mm_storeu_pd(ma[j], max_abs[j]);
-    _mm_storeu_pd(mn[j], min_nz[j]);
-    _mm_storeu_pd(b[j], bad[j]);
-  }
-  // Lanes by axis: pair 0 = (x, y), pair 1 = (z, x), pair 2 = (y, z).
-  static constexpr int kAxis[3][2] = {{0, 1}, {2, 0}, {1, 2}};
-  MeshCensus tail = census_portable(xyz + 6 * pairs6, num_vertices - 2 * pairs6);  // 0 or 1 vertex
-  double lo_axis[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi_axis[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  double max_all = 0.0, min_all = HUGE_VAL;
-  bool any_bad = false;
-  for (int j = 0; j < 3; ++j)
-    for (int lane = 0; lane < 2; ++lane) {
-      const int k = kAxis[j][lane];
-      lo_axis[k] = l[j][lane] < lo_axis[k] ? l[j][lane] : lo_axis[k];
-      hi_axis[k] = h[j][lane] > hi_axis[k] ? h[j][lane] : hi_axis[k];
-      max_all = ma[j][lane] > max_all ? ma[j][lane] : max_all;
-      min_all = mn[j][lane] < min_all ? mn[j][lane] : min_all;
-      std::uint64_t bits;
-      std::memcpy(&bits, &b[j][lane], sizeof bits);
-      any_bad |= bits != 0;
-    }
-  MeshCensus c;
-  c.finite = !any_bad && tail.finite;
-  if (num_vertices - 2 * pairs6 == 1) {
-    const double* p = xyz + 6 * pairs6;
-    for (int k = 0; k < 3; ++k) {
-      const double ax = std::fabs(p[k]);
-      lo_axis[k] = p[k] < lo_axis[k] ? p[k] : lo_axis[k];
-      hi_axis[k] = p[k] > hi_axis[k] ? p[k] : hi_axis[k];
-      max_all = ax > max_all ? ax : max_all;
-      if (ax != 0.0) min_all = ax < min_all ? ax : min_all;
-    }
-  }
-  c.safe = c.finite && max_all <= 0x1p201 && min_all >= 0x1p-142;
-  for (int k = 0; k < 3; ++k) c.extent[k] = hi_axis[k] - lo_axis[k];
-  return c;
-}
-#else
-MeshCensus census(const double* xyz, std::size_t num_vertices) { return census_portable(xyz, num_vertices); }
-#endif
 
 // Per-tet work once L1 did not decide, on a mesh known to be safe.
-__attribute__((noinline)) int orient3d_safe_after_static(const double* a, const double* b, const double* c, const double* d) {
+int orient3d_safe_after_static(const double* a, const double* b, const double* c, const double* d) {
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
@@ -664,123 +526,7 @@ __attribute__((noinline)) int orient3d_safe_after_static(const double* a, const 
   return orient3d_exact_tail(a, b, c, d, permanent);
 }
 
-TetSignCounts fail(const char* reason) {
-  TetSignCounts r;
-  r.ok = false;
-  r.error = reason;
-  return r;
-}
 
-// Batch kernel with the L0 filter already computed. Per chunk of kChunk tets: pass 1 validates the
-// ids (running max, no pointer is formed from a bad id), computes the bare determinant + the L1
-// compare and counts, with no call in the loop; only a chunk with an undecided entry takes pass 2,
-// which resolves those through the guarded layers. (A variant fusing two coordinate arrays in one
-// loop, sharing the id loads, measured slower than two passes: 12.8 vs 10.8 ns/tet on the bunny pair.)
-TetSignCounts batch_kernel(const Orient3dBatchFilter& filter, const double* xyz, std::size_t num_vertices,
-                           const std::uint32_t* tets, std::size_t num_tets, std::int8_t* signs) {
-  if (!filter.finite) return fail("non-finite vertex coordinate");
-  // Without L1 the bound is +inf: every tet goes to the guarded layers (still exact).
-  const double bound = filter.static_filter ? filter.static_bound : HUGE_VAL;
-  constexpr std::size_t kChunk = 2048;
-  std::int8_t chunk_signs[kChunk];
-  std::size_t positive = 0, negative = 0;
-  for (std::size_t first = 0; first < num_tets; first += kChunk) {
-    const std::size_t count = std::min(kChunk, num_tets - first);
-    std::int8_t* out = signs ? signs + first : chunk_signs;
-    const std::uint32_t* chunk = tets + 4 * first;
-    std::uint32_t max_id = 0;
-    std::size_t pos = 0, neg = 0;
-    for (std::size_t t = 0; t < count; ++t) {
-      const std::uint32_t* v = chunk + 4 * t;
-      const std::uint32_t m01 = v[0] > v[1] ? v[0] : v[1], m23 = v[2] > v[3] ? v[2] : v[3];
-      const std::uint32_t m = m01 > m23 ? m01 : m23;
-      max_id = m > max_id ? m : max_id;
-      if (m >= num_vertices) break;  // reported after the loop, before any pointer is formed
-      const double* a = xyz + 3 * std::size_t(v[0]);
-      const double* b = xyz + 3 * std::size_t(v[1]);
-      const double* c = xyz + 3 * std::size_t(v[2]);
-      const double* d = xyz + 3 * std::size_t(v[3]);
-      const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-      const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-      const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-      const double det =
-          adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-      const int above = det > bound, below = det < -bound;
-      pos += above;
-      neg += below;
-      out[t] = static_cast<std::int8_t>(above - below);
-    }
-    if (max_id >= num_vertices) return fail("tet vertex id out of range");
-    if (pos + neg != count) {
-      for (std::size_t t = 0; t < count; ++t) {
-        if (out[t] != 0) continue;
-        const std::uint32_t* v = chunk + 4 * t;
-        const double* a = xyz + 3 * std::size_t(v[0]);
-        const double* b = xyz + 3 * std::size_t(v[1]);
-        const double* c = xyz + 3 * std::size_t(v[2]);
-        const double* d = xyz + 3 * std::size_t(v[3]);
-        const int s = filter.safe ? orient3d_safe_after_static(a, b, c, d) : orient3d(a, b, c, d);
-        out[t] = static_cast<std::int8_t>(s);
-        pos += s > 0;
-        neg += s < 0;
-      }
-    }
-    positive += pos;
-    negative += neg;
-  }
-  TetSignCounts r;
-  r.positive = positive;
-  r.negative = negative;
-  r.zero = num_tets - positive - negative;
-  return r;
-}
-
-}  // namespace
-
-Orient3dBatchFilter orient3d_batch_filter(const double* xyz, std::size_t num_vertices) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_batch_filter(xyz, num_vertices));
-  const MeshCensus mesh = census(xyz, num_vertices);
-  Orient3dBatchFilter f;
-  f.finite = mesh.finite;
-  f.safe = mesh.safe;
-  // L1 is valid when the mesh is safe and every extent is in [1e-97, 1e102) (CGAL's guards).
-  bool use_static = mesh.safe;
-  for (int k = 0; k < 3; ++k) use_static &= (mesh.extent[k] >= 1e-97 && mesh.extent[k] < 1e102);
-  f.static_filter = use_static;
-  f.static_bound = use_static ? kO3Static * mesh.extent[0] * mesh.extent[1] * mesh.extent[2] : 0.0;
-  return f;
-}
-
-TetSignCounts orient3d_tets(const Orient3dBatchFilter& filter, const double* xyz, std::size_t num_vertices,
-                            const std::uint32_t* tets, std::size_t num_tets, std::int8_t* signs) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_tets(filter, xyz, num_vertices, tets, num_tets, signs));
-  return batch_kernel(filter, xyz, num_vertices, tets, num_tets, signs);
-}
-
-TetSignCounts orient3d_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
-                            std::size_t num_tets, std::int8_t* signs) {
-  VOLMAP_REQUIRE_DEFAULT_FP_ENV(orient3d_tets(xyz, num_vertices, tets, num_tets, signs));
-  return batch_kernel(orient3d_batch_filter(xyz, num_vertices), xyz, num_vertices, tets, num_tets, signs);
-}
-
-// The certification count: orient3d <= 0, refused input counting as all tets non-positive.
-std::size_t count_nonpositive(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
-                              std::size_t num_tets, std::int8_t* signs) {
-  const TetSignCounts c = orient3d_tets(xyz, num_vertices, tets, num_tets, signs);
-  if (c.ok) return c.zero + c.negative;
-  if (signs) std::fill(signs, signs + num_tets, std::int8_t(0));
-  return num_tets;
-}
-
-std::vector<std::uint32_t> nonpositive_tets(const double* xyz, std::size_t num_vertices, const std::uint32_t* tets,
-                                            std::size_t num_tets) {
-  std::vector<std::int8_t> signs(num_tets);
-  const std::size_t bad = count_nonpositive(xyz, num_vertices, tets, num_tets, signs.data());
-  std::vector<std::uint32_t> ids;
-  ids.reserve(bad);
-  for (std::size_t t = 0; t < num_tets; ++t)
-    if (signs[t] <= 0) ids.push_back(static_cast<std::uint32_t>(t));
-  return ids;
-}
+}  // namespace detail
 
 }  // namespace volmap

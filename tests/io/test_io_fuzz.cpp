@@ -63,7 +63,12 @@ TEST_CASE("fuzz: truncated and mutated tet mesh files never crash") {
   write_vtk((d / "b.vtk").string(), m, true);
   write_vtu((d / "r.vtu").string(), m, {{"e", {0.5, 1.5}}});
   write_vtu((d / "t.vtu").string(), m, {}, VtuEncoding::Ascii);
-  for (const char* f : {"s.mesh", "a.vtk", "b.vtk", "r.vtu", "t.vtu"}) {
+  write_msh((d / "a.msh").string(), m, MshEncoding::Ascii);
+  write_msh((d / "b.msh").string(), m, MshEncoding::Binary);
+  volmap_test::write_bytes(d / "t.ovm",
+                           "OVM ASCII\nVertices\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nEdges\n6\n0 1\n1 2\n0 2\n0 3\n1 3\n2 3\n"
+                           "Faces\n4\n3 0 2 5\n3 6 9 1\n3 4 10 7\n3 8 11 3\nPolyhedra\n1\n4 0 2 4 6\n");
+  for (const char* f : {"s.mesh", "a.vtk", "b.vtk", "r.vtu", "t.vtu", "a.msh", "b.msh", "t.ovm"}) {
     const std::string file = f;
     CAPTURE(file);
     const std::string bytes = slurp((d / f).string());

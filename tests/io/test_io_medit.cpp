@@ -6,12 +6,18 @@
 
 #include "test_support.hpp"
 
+#include <charconv>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <unistd.h>
 #include <fstream>
+#include <random>
+#include <string>
+#include <vector>
 
 using namespace volmap;
 namespace fs = std::filesystem;
@@ -255,4 +261,57 @@ TEST_CASE("medit: parse time of G1 bunny and buste (informative)") {
     }
     MESSAGE(p.filename().string() << ": best parse " << best << " ms");
   }
+}
+
+TEST_CASE("medit: coordinates are the doubles std::from_chars gives (random decimal forms, exact ties)") {
+  // The reader's bulk path (Tokenizer::next_plain_double: a whole vertex line at a time, falling back
+  // to the token-by-token path) must read every token whole and round it correctly; the oracle is
+  // std::from_chars on each token on its own.
+  std::mt19937_64 rng(20261124);
+  std::vector<std::string> tokens;
+  auto digit_string = [&](int n) {
+    std::string s;
+    for (int i = 0; i < n; ++i) s += char('0' + rng() % 10);
+    return s;
+  };
+  for (int i = 0; i < 60000; ++i) {
+    const int int_digits = int(rng() % 8), frac_digits = int(rng() % 22);
+    std::string t = (rng() % 3 == 0 ? "-" : "") + digit_string(int_digits);
+    if (frac_digits > 0 || int_digits == 0) t += "." + digit_string(frac_digits > 0 ? frac_digits : 1);
+    if (rng() % 16 == 0) t += "e" + std::to_string(int(rng() % 40) - 20);
+    tokens.push_back(t);
+  }
+  // Shortest round-trip forms of random doubles (what volmap and most tools write) and 17-digit forms.
+  std::uniform_real_distribution<double> u(-200.0, 200.0);
+  for (int i = 0; i < 20000; ++i) {
+    char buf[64];
+    const double x = u(rng) * std::pow(10.0, double(int(rng() % 9) - 4));
+    tokens.push_back(std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr));
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    tokens.push_back(buf);
+  }
+  // Exact ties between two doubles, written with decimals: 2^53 + odd, and 2^52 + k + 1/2.
+  for (std::uint64_t k = 1; k < 200; k += 2) {
+    tokens.push_back(std::to_string((std::uint64_t(1) << 53) + k) + ".0");
+    tokens.push_back(std::to_string((std::uint64_t(1) << 52) + k) + ".5");
+    tokens.push_back("-" + std::to_string((std::uint64_t(1) << 52) + k + 1) + ".5");
+  }
+  tokens.insert(tokens.end(), {"0.0", "-0.0", "0.5", ".25", "-.75", "7.", "0.1", "0.30000000000000004",
+                               "9999999999999999999", "0.9999999999999999999", "1.0000000000000000001",
+                               "123456789012345678.9", "0.00000000000000000001"});
+  while (tokens.size() % 3 != 0) tokens.push_back("1");
+  const std::size_t nv = tokens.size() / 3;
+  std::string text = "MeshVersionFormatted 1\nDimension 3\nVertices\n" + std::to_string(nv) + "\n";
+  for (std::size_t v = 0; v < nv; ++v) text += tokens[3 * v] + " " + tokens[3 * v + 1] + " " + tokens[3 * v + 2] + " 0\n";
+  text += "Tetrahedra\n1\n1 2 3 4 0\nEnd\n";
+  const TetMeshData m = read_medit(write_text("decimals.mesh", text));
+  REQUIRE(m.xyz.size() == tokens.size());
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    double expected = 0;
+    std::from_chars(tokens[i].data(), tokens[i].data() + tokens[i].size(), expected);
+    if (std::memcmp(&expected, &m.xyz[i], sizeof expected) != 0 && mismatches++ < 10)
+      MESSAGE("token " << tokens[i] << ": read " << m.xyz[i] << ", from_chars " << expected);
+  }
+  CHECK(mismatches == 0);
 }

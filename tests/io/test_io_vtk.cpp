@@ -6,6 +6,7 @@
 #include <volmap/core/error.hpp>
 #include <volmap/io/io.hpp>
 
+#include "mesh_compare.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -24,15 +25,8 @@ fs::path scratch_dir() { return volmap_test::scratch_dir("io_vtk"); }
 std::string write_bytes(const std::string& name, const std::string& bytes) {
   return volmap_test::write_bytes(scratch_dir() / name, bytes);
 }
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
-void check_same(const TetMeshData& a, const TetMeshData& b) {
-  CHECK(same_bits(a.xyz, b.xyz));
-  CHECK(a.tets == b.tets);
-  CHECK(a.vertex_labels == b.vertex_labels);
-  CHECK(a.tet_labels == b.tet_labels);
-}
+using volmap_test::same_bits;
+void check_same(const TetMeshData& a, const TetMeshData& b) { volmap_test::check_same_mesh(a, b); }
 template <typename T>
 void put_be(std::string& s, T v) {
   unsigned char b[sizeof(T)];

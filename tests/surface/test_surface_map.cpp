@@ -55,10 +55,10 @@ static std::vector<std::size_t> map_all(const std::string& name) {
     if (std::string(dn) == "cube") {
       const SurfaceMapResult s = project_to_sphere(r, {50, 50, 50}, 50);
       SurfaceMapCheckOptions o;
-      o.override_kernel = true;
-      o.kernel = {50, 50, 50};
+      o.sphere_centre = {50, 50, 50};
       o.sphere_radius = 50;
       CHECK(check_surface_map(s.mesh, s.map, nullptr, o).ok);
+      CHECK(check_surface_map(s.mesh, s.map).ok);  // VOLMAP's criterion: cones about the centroid
     }
   }
   return added;
@@ -212,8 +212,7 @@ TEST_CASE("volmap-surface-map --volmap-precision writes 6 decimals that pass the
     const Domain dom = builtin_domain(sphere ? "cube" : d);
     SurfaceMapCheckOptions o;
     if (sphere) {
-      o.override_kernel = true;
-      o.kernel = {50, 50, 50};
+      o.sphere_centre = {50, 50, 50};
       o.sphere_radius = 50;
     }
     const auto c = check_surface_map(tm, m, sphere ? nullptr : &dom, o);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <volmap/io/io.hpp>
 
+#include "meshio_support.hpp"
 #include "test_support.hpp"
 
 #include <cmath>
@@ -33,13 +34,6 @@ int run(const std::string& command, std::string* out = nullptr) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
-
-// A Python interpreter with meshio, or "" (the pyenv shim may hide Debian's python3-meshio).
-std::string meshio_python() {
-  for (const char* py : {"python3", "/usr/bin/python3"})
-    if (run(std::string(py) + " -c 'import meshio'") == 0) return py;
-  return "";
-}
 
 }  // namespace
 
@@ -86,7 +80,7 @@ TEST_CASE("volmap-convert: conversions keep order, exit codes, --json, no partia
 }
 
 TEST_CASE("third-party reader: meshio reads our .vtu and .vtk files") {
-  const std::string py = meshio_python();
+  const std::string py = volmap_test::meshio_python();
   if (py.empty()) {
     MESSAGE("skipped: Python meshio not available");
     return;
@@ -98,47 +92,17 @@ TEST_CASE("third-party reader: meshio reads our .vtu and .vtk files") {
   write_vtu((d / "ma.vtu").string(), m, {}, VtuEncoding::Ascii);
   write_vtk((d / "m.vtk").string(), m, false);
   write_vtk((d / "mb.vtk").string(), m, true);
-  // The script prints: points, tets, x/y/z of vertex 0 and the last vertex (repr), first tet.
-  const std::string script =
-      "import sys, meshio\n"
-      "m = meshio.read(sys.argv[1])\n"
-      "tets = [c.data for c in m.cells if c.type == 'tetra']\n"
-      "t = tets[0]\n"
-      "print(len(m.points), sum(len(x) for x in tets))\n"
-      "print(' '.join(repr(float(v)) for v in list(m.points[0]) + list(m.points[-1])))\n"
-      "print(' '.join(str(int(v)) for v in t[0]), ' '.join(str(int(v)) for v in t[-1]))\n";
-  { std::ofstream(d / "check.py") << script; }
   for (const char* name : {"m.vtu", "ma.vtu", "m.vtk", "mb.vtk"}) {
     const std::string file = name;
     CAPTURE(file);
-    std::string out;
-    REQUIRE(run(py + " " + quoted(d / "check.py") + " " + quoted(d / name), &out) == 0);
-    std::istringstream in(out);
-    std::size_t np = 0, nt = 0;
-    in >> np >> nt;
-    CHECK(np == m.num_vertices());
-    CHECK(nt == m.num_tets());
-    double c[6];
-    for (double& v : c) in >> v;
-    const std::size_t last = m.num_vertices() - 1;
-    CHECK(c[0] == m.xyz[0]);
-    CHECK(c[1] == m.xyz[1]);
-    CHECK(c[2] == m.xyz[2]);
-    CHECK(c[3] == m.xyz[3 * last]);
-    CHECK(c[4] == m.xyz[3 * last + 1]);
-    CHECK(c[5] == m.xyz[3 * last + 2]);
-    std::uint32_t t0[4], tl[4];
-    for (auto& v : t0) in >> v;
-    for (auto& v : tl) in >> v;
-    for (int k = 0; k < 4; ++k) {
-      CHECK(t0[k] == m.tets[k]);
-      CHECK(tl[k] == m.tets[m.tets.size() - 4 + k]);
-    }
+    volmap_test::MeshioSummary s;
+    REQUIRE(volmap_test::meshio_summary(py, d.string(), (d / name).string(), s));
+    volmap_test::check_meshio_summary(s, m);
   }
 }
 
 TEST_CASE("third-party writer: files written by meshio are read back exactly") {
-  const std::string py = meshio_python();
+  const std::string py = volmap_test::meshio_python();
   if (py.empty()) {
     MESSAGE("skipped: Python meshio not available");
     return;

@@ -103,7 +103,7 @@ void append_line_atomically(const std::string& path, const std::string& line) {
 std::string record_to_json_line(const CaseRecord& r) {
   json j{{"case", r.case_id}, {"group", r.group}, {"mesh", r.name}, {"domain", r.domain}, {"method", r.method},
          {"exit_code", r.exit_code}, {"signal", r.term_signal}, {"timed_out", r.timed_out}, {"failure", r.failure},
-         {"time_s", r.time_s}, {"peak_rss_mb", r.peak_rss_mb}, {"certified", r.certified},
+         {"time_s", r.time_s}, {"peak_rss_mb", r.peak_rss_mb}, {"cpu_s", r.cpu_s}, {"certified", r.certified},
          {"tets_in", r.tets_in}, {"tets_out", r.tets_out}, {"positive", r.positive}, {"zero", r.zero},
          {"negative", r.negative}, {"growth", r.growth}, {"label", r.label}, {"method_args", r.method_args},
          {"refined", r.refined}, {"certified_by", r.certified_by}};
@@ -136,6 +136,7 @@ std::optional<CaseRecord> record_from_json_line(const std::string& line) {
     r.failure = j.value("failure", "");
     r.time_s = j.value("time_s", 0.0);
     r.peak_rss_mb = j.value("peak_rss_mb", 0.0);
+    r.cpu_s = j.value("cpu_s", -1.0);
     r.certified = j.value("certified", false);
     r.tets_in = j.value("tets_in", -1LL);
     r.tets_out = j.value("tets_out", -1LL);
@@ -279,6 +280,7 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
   r.timed_out = run.timed_out;
   r.time_s = run.seconds;
   r.peak_rss_mb = run.peak_rss_mb;
+  r.cpu_s = run.cpu_seconds;
 
   std::error_code ec;
   if (!run.started) {

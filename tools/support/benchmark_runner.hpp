@@ -34,6 +34,7 @@ struct CaseRecord {
   bool timed_out = false;
   std::string failure;         // short reason when the candidate did not produce a checkable map
   double time_s = 0, peak_rss_mb = 0;
+  double cpu_s = -1;           // the candidate's CPU seconds (user + system; -1 = not recorded), for loaded machines
   bool certified = false;      // exact check passed on the written files
   long long tets_in = -1, tets_out = -1, positive = -1, zero = -1, negative = -1;
   double growth = 1.0;         // output tets / original input tets

@@ -92,6 +92,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
   if (running_pid) running_pid->store(0);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  result.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   if (WIFEXITED(status)) {
     result.exit_code = WEXITSTATUS(status);  // 127: glibc's spawn could not exec the program
   } else if (WIFSIGNALED(status)) {

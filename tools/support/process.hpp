@@ -18,6 +18,7 @@ struct ProcessResult {
   bool timed_out = false;    // true when we killed it at the deadline
   double seconds = 0.0;      // wall-clock time
   double peak_rss_mb = 0.0;  // ru_maxrss of the child
+  double cpu_seconds = 0.0;  // user + system CPU time of the child (its waited-for descendants too)
 };
 
 // Runs argv[0] (searched in PATH when it has no '/') with argv; stdout and stderr are redirected to

@@ -9,6 +9,8 @@
 // together at the end. SIGINT/SIGTERM/SIGHUP remove the temporary files.
 #pragma once
 
+#include "input_mesh.hpp"
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <volmap/check/input_mesh.hpp>
@@ -85,10 +87,11 @@ class RunFiles {
   volmap::OutputTransaction transaction_;
 };
 
-// Reads a tet mesh through the format dispatcher and refuses it (exit 2, naming the file and the
-// reason) unless it is a valid input (input_mesh.hpp: what volmap-tetmesh-check accepts).
-inline volmap::TetMeshData read_input_tet_mesh(const std::string& path) {
-  volmap::TetMeshData mesh = volmap::read_tet_mesh(path);
+// Reads a tet mesh through the format dispatcher, keeping the reader's notes in `inputs`
+// (support/input_mesh.hpp), and refuses it (exit 2, naming the file and the reason) unless it is a
+// valid input (volmap/check/input_mesh.hpp: what volmap-tetmesh-check accepts).
+inline volmap::TetMeshData read_input_tet_mesh(InputMeshes& inputs, const std::string& path) {
+  volmap::TetMeshData mesh = inputs.read(path);
   volmap::require_valid_input_mesh(mesh, path);
   return mesh;
 }

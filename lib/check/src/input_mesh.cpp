@@ -3,6 +3,8 @@
 // tet repeating a vertex, first duplicate pair) are looked up only when the matching count is nonzero.
 #include <volmap/check/input_mesh.hpp>
 
+#include <volmap/check/orientation.hpp>
+
 #include <volmap/core/error.hpp>
 #include <volmap/core/local_tables.hpp>
 
@@ -115,9 +117,7 @@ void add_orientation_problems(const TetMeshData& mesh, const TetMeshCheckReport&
   const TetSignCounts& s = r.signs;
   if (r.num_tets == 0) return;
   if (s.positive == 0 && s.negative > 0) {
-    out.push_back("no tet is positive (exact orient3d: " + fmt(s.negative) + " negative, " + fmt(s.zero) +
-                  " zero-volume): the mesh uses the opposite orientation convention (e.g. Gmsh's); "
-                  "volmap-tetmesh-check --fix writes it flipped");
+    out.push_back(describe_orientation(s, "volmap-tetmesh-check --fix"));  // the opposite convention, in words
   } else if (s.negative > 0) {
     out.push_back(plural(s.negative, "tet is", "tets are") + " inverted among " + fmt(r.num_tets) +
                   " (exact orient3d < 0; first: tet " + fmt(first_tet_with_sign(mesh, -1)) +

@@ -49,16 +49,6 @@ const CheckItem& find_check(const std::vector<CheckItem>& checks, const std::str
 
 }  // namespace
 
-const char* to_string(OrientationClass c) {
-  switch (c) {
-    case OrientationClass::AllPositive: return "positive";
-    case OrientationClass::CoherentlyOpposite: return "coherently_opposite";
-    case OrientationClass::Mixed: return "mixed";
-    case OrientationClass::Empty: return "empty";
-  }
-  return "?";
-}
-
 bool TetMeshCheckReport::all_passed() const {
   if (checks.empty()) return false;
   for (const CheckItem& c : checks)
@@ -103,36 +93,9 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
                                                  topo.boundary_half_faces.size(), options.self_intersection);
 
   const TetSignCounts& s = r.signs;
-  if (s.positive > 0 && s.negative > 0)
-    r.orientation = OrientationClass::Mixed;
-  else if (s.negative > 0)
-    r.orientation = OrientationClass::CoherentlyOpposite;
-  else if (s.positive > 0)
-    r.orientation = OrientationClass::AllPositive;
-  else
-    r.orientation = OrientationClass::Empty;
-
-  const std::string counts = fmt(s.positive) + " positive, " + fmt(s.negative) + " negative, " + fmt(s.zero) +
-                             " zero-volume tets";
+  r.orientation = classify_orientation(s);
   // 1. orientation
-  {
-    CheckItem c{"orientation", r.orientation == OrientationClass::AllPositive, ""};
-    switch (r.orientation) {
-      case OrientationClass::AllPositive: c.detail = counts + " (VOLMAP convention, orient3d > 0)"; break;
-      case OrientationClass::CoherentlyOpposite:
-        c.detail = counts + ": no tet is positive, the mesh uses the opposite orientation convention (e.g. Gmsh's); "
-                   "--fix flips every tet";
-        break;
-      case OrientationClass::Mixed: {
-        const bool pos_minority = s.positive <= s.negative;
-        c.detail = counts + ": mixed signs, minority " + (pos_minority ? "positive " : "negative ") +
-                   fmt(pos_minority ? s.positive : s.negative) + " tets; not fixable by a global flip";
-        break;
-      }
-      case OrientationClass::Empty: c.detail = counts + ": no tet with a non-zero volume"; break;
-    }
-    r.checks.push_back(c);
-  }
+  r.checks.push_back({"orientation", r.orientation == OrientationClass::AllPositive, describe_orientation(s, "--fix")});
   // 2. volume
   r.checks.push_back({"volume", s.zero == 0 && r.num_tets > 0,
                       r.num_tets == 0 ? std::string("no tets")

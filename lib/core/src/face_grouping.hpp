@@ -7,6 +7,7 @@
 // p>q). Requires num_tets <= kMaxGroupedTets (hf < 2^31, the parity lives in bit 31).
 #pragma once
 
+#include <volmap/core/huge_pages.hpp>
 #include <volmap/core/local_tables.hpp>
 
 #include <tbb/blocked_range.h>
@@ -60,8 +61,9 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
   }
   for (std::size_t v = 2; v < offsets.size(); ++v) offsets[v] += offsets[v - 1];
   const std::size_t total = offsets.back();
-  std::vector<std::uint64_t> keys(total);
-  std::vector<std::uint32_t> hfp(total);
+  // Uninitialised (every slot is written below) and advised for huge pages.
+  HugeBuffer<std::uint64_t> keys(total);
+  HugeBuffer<std::uint32_t> hfp(total);
   for (std::size_t t = 0; t < num_tets; ++t) {
     if (skip(t)) continue;
     const std::uint32_t* p = tets + 4 * t;

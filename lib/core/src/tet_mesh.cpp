@@ -3,6 +3,7 @@
 #include <volmap/core/tet_mesh.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/core/huge_pages.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/core/properties.hpp>
 
@@ -72,8 +73,12 @@ TetMesh::TetMesh(const TetMeshData& data) : TetMesh() {
         if (p[i] == p[j]) bad("tet " + std::to_string(t) + " repeats vertex " + std::to_string(p[i]));
     }
   }
-  tv_ = data.tets;
-  xyz_ = data.xyz;
+  // The big arrays are mapped before their first touch (huge_pages.hpp).
+  reserve_mapped(tv_, 4 * nt);
+  tv_.assign(data.tets.begin(), data.tets.end());
+  reserve_mapped(xyz_, 3 * nv);
+  xyz_.assign(data.xyz.begin(), data.xyz.end());
+  reserve_mapped(opp_, 4 * nt);
   opp_.assign(4 * nt, kBoundary);
   // Buckets are matched in parallel for big meshes; the reported error is the first one in
   // (smallest vertex, face) order, exactly as a serial pass would report it.

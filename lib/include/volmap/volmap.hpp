@@ -1,7 +1,8 @@
 // volmap/volmap.hpp — the whole library in one include (link volmap::volmap).
 // Wings, each usable alone (link volmap::<wing>, include <volmap/<wing>/...>):
 //   core     TetMeshData, TetMesh (half-face mesh, edits, properties), ids, local tables, Error
-//   io       read_tet_mesh / write_medit / read_boundary_map, VTK/VTU, surfaces, atomic outputs
+//   io       read_tet_mesh / write_medit / read_boundary_map, VTK/VTU, Gmsh .msh, OpenVolumeMesh .ovm,
+//            surfaces, atomic outputs
 //   check    check_tet_mesh, self-intersection, check_map, metrics
 //   surface  domains, surface maps onto them (OpenMesh TriMesh boundary), their check
 //   volume   Tutte 3D, FFM/TLC untangling, chord splits, cone repair, compute_volume_map
@@ -24,11 +25,13 @@
 #include <volmap/io/io.hpp>
 #include <volmap/io/io_surface.hpp>
 #include <volmap/io/output_paths.hpp>
+#include <volmap/io/read_notes.hpp>
 #include <volmap/io/temp_cleanup.hpp>
 
 #include <volmap/check/input_mesh.hpp>
 #include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
+#include <volmap/check/orientation.hpp>
 #include <volmap/check/self_intersection.hpp>
 #include <volmap/check/tetmesh_checks.hpp>
 

@@ -43,8 +43,8 @@ std::string truncated(const char* section, std::size_t index, std::size_t count)
 }  // namespace
 
 TetMeshData read_medit(const std::string& path) {
-  const std::string data = io_detail::read_whole_file(path, {/*text=*/true});
-  Tokenizer tok(data.data(), data.data() + data.size(), /*hash_comments=*/true);
+  const io_detail::FileBytes data = io_detail::read_file_bytes(path, {/*text=*/true});
+  Tokenizer tok(data.begin(), data.end(), /*hash_comments=*/true);
   TetMeshData mesh;
   bool have_vertices = false, have_tets = false;
   std::size_t tets_line = 0;
@@ -74,10 +74,21 @@ TetMeshData read_medit(const std::string& path) {
       if (have_vertices) throw_bad_input(path, t.line, "second Vertices section");
       need_count("Vertices");
       const std::size_t nv = io_detail::expect_count(count_tok, path, "Vertices", tok.remaining(), 8, kMaxIndexCount);
+      reserve_mapped(mesh.xyz, 3 * nv);
+      reserve_mapped(mesh.vertex_labels, nv);
       mesh.xyz.resize(3 * nv);
       mesh.vertex_labels.resize(nv);
       Token v;
       for (std::size_t i = 0; i < nv; ++i) {
+        std::uint32_t label_fast;
+        const Tokenizer::State line_start = tok.save();
+        if (tok.next_plain_double(mesh.xyz[3 * i]) && tok.next_plain_double(mesh.xyz[3 * i + 1]) &&
+            tok.next_plain_double(mesh.xyz[3 * i + 2]) && tok.next_plain_unsigned(&label_fast, 1) &&
+            label_fast <= static_cast<std::uint32_t>(std::numeric_limits<std::int32_t>::max())) {
+          mesh.vertex_labels[i] = static_cast<std::int32_t>(label_fast);
+          continue;
+        }
+        tok.restore(line_start);  // the general path, with precise errors
         for (int c = 0; c < 3; ++c) {
           if (!tok.next(v)) throw_bad_input(path, tok.last_line(), truncated("Vertices", i, nv));
           if (!io_detail::parse_double(v.text, mesh.xyz[3 * i + c]))
@@ -95,12 +106,26 @@ TetMeshData read_medit(const std::string& path) {
       need_count("Tetrahedra");
       const std::size_t nt = io_detail::expect_count(count_tok, path, "Tetrahedra", tok.remaining(), 10, kMaxIndexCount / 4);
       tets_line = count_tok.line;
+      reserve_mapped(mesh.tets, 4 * nt);
+      reserve_mapped(mesh.tet_labels, nt);
       mesh.tets.resize(4 * nt);
       mesh.tet_labels.resize(nt);
       // When Vertices came first, ids are range-checked here with their line; otherwise after the loop.
       const std::int64_t nv = have_vertices ? static_cast<std::int64_t>(mesh.num_vertices()) : std::numeric_limits<std::int64_t>::max();
       Token v;
       for (std::size_t i = 0; i < nt; ++i) {
+        std::uint32_t fast_line[5];
+        const Tokenizer::State line_start = tok.save();
+        if (tok.next_plain_line(fast_line, 5)) {
+          bool in_range = true;
+          for (int c = 0; c < 4; ++c) in_range &= fast_line[c] >= 1 && std::int64_t(fast_line[c]) <= nv;
+          if (in_range) {
+            for (int c = 0; c < 4; ++c) mesh.tets[4 * i + c] = fast_line[c] - 1;
+            mesh.tet_labels[i] = static_cast<std::int32_t>(fast_line[4]);  // < 10^9
+            continue;
+          }
+          tok.restore(line_start);  // the general path, with precise errors
+        }
         for (int c = 0; c < 4; ++c) {
           std::int64_t id;
           std::uint64_t fast;

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -102,6 +104,42 @@ std::string read_whole_file(const std::string& path, const ReadOptions& options)
   return data;
 }
 
+namespace {
+FileBytes copy_to_file_bytes(const std::string& data) {
+  FileBytes f{HugeBuffer<char>(data.size()), data.size()};
+  std::copy(data.begin(), data.end(), f.bytes.data());
+  return f;
+}
+}  // namespace
+
+FileBytes read_file_bytes(const std::string& path, const ReadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw_io(path, "is a directory, not a file");
+  const auto size = std::filesystem::file_size(path, ec);
+  // Pipes, special files, empty files and line-length limits: the general reader, then one copy.
+  if (ec || size == 0 || options.max_line != 0) return copy_to_file_bytes(read_whole_file(path, options));
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
+  // One more byte than announced: a file that grew since the size query is detected and re-read.
+  FileBytes f{HugeBuffer<char>(static_cast<std::size_t>(size) + 1), 0};
+  f.size = std::fread(f.bytes.data(), 1, static_cast<std::size_t>(size) + 1, file);
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) throw_io(path, "read error");
+  if (f.size > size) return copy_to_file_bytes(read_whole_file(path, options));
+  const char* data = f.bytes.data();
+  if (options.strip_bom && f.size >= 3 && std::memcmp(data, "\xEF\xBB\xBF", 3) == 0) f.start = 3;
+  const std::size_t prefix_end = std::min(f.size, f.start + options.text_prefix);
+  if (std::memchr(data + f.start, '\0', prefix_end - f.start))
+    throw_bad_input(path, 0, "binary data (a NUL byte) in the header: not a file of this format");
+  if (options.text) {
+    if (const void* nul = std::memchr(data + f.start, '\0', f.size - f.start))
+      throw_bad_input(path, 0, "binary data (a NUL byte at offset " +
+                                   std::to_string(static_cast<const char*>(nul) - data - f.start) + "): not a text file");
+  }
+  return f;
+}
+
 bool parse_double(std::string_view text, double& value) {
   if (text.empty() || text.size() > kMaxNumberChars) return false;
   if (text[0] == '+') {
@@ -116,6 +154,26 @@ bool parse_double(std::string_view text, double& value) {
   const auto result = std::from_chars(first, last, value, std::chars_format::general);
   if (result.ec != std::errc() || result.ptr != last) return false;
   return std::isfinite(value);
+}
+
+bool Tokenizer::next_plain_double(double& value) {
+  const char* p = pos_;
+  std::size_t lines = 0;
+  while (p != end_ && (*p == ' ' || *p == '\n')) lines += *p++ == '\n';
+  if (p == end_) return false;
+  const char c0 = *p == '-' && p + 1 != end_ ? p[1] : *p;
+  if (!((c0 >= '0' && c0 <= '9') || c0 == '.')) return false;  // from_chars also takes inf/nan
+  double v;
+  const auto r = std::from_chars(p, end_, v, std::chars_format::general);
+  if (r.ec != std::errc() || static_cast<std::size_t>(r.ptr - p) > kMaxNumberChars) return false;
+  const char* stop = r.ptr;
+  if (stop != end_ && *stop != ' ' && *stop != '\n') return false;
+  if (!std::isfinite(v)) return false;
+  value = v;
+  pos_ = stop;
+  line_ += lines;
+  last_line_ = line_;
+  return true;
 }
 
 std::string quote(std::string_view text) {

@@ -7,11 +7,13 @@
 
 #include <volmap/io/atomic_file.hpp>
 #include <volmap/core/error.hpp>
+#include <volmap/core/huge_pages.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -35,6 +37,17 @@ inline constexpr std::size_t kMaxStreamBytes = std::size_t(1) << 30;
 // longer than kMaxStreamBytes, Error(BadInput) when the content breaks `options` (checked as the
 // bytes arrive, so /dev/zero or a huge sparse file is refused after its first block).
 std::string read_whole_file(const std::string& path, const ReadOptions& options = {});
+
+// The same into a buffer mapped before the read (huge_pages.hpp): no zero fill, no page faults (the
+// large text readers' path), vetted by the same `options`. Bytes [start, size) of `bytes`.
+struct FileBytes {
+  HugeBuffer<char> bytes;
+  std::size_t size = 0;
+  std::size_t start = 0;  // past a stripped byte-order mark
+  const char* begin() const { return bytes.data() + start; }
+  const char* end() const { return bytes.data() + size; }
+};
+FileBytes read_file_bytes(const std::string& path, const ReadOptions& options = {});
 
 struct Token {
   std::string_view text;
@@ -86,6 +99,68 @@ class Tokenizer {
     value = x;
     return 1;
   }
+  // Bulk fast path of numeric blocks: `count` unsigned decimals of at most 9 digits, each preceded by
+  // spaces or newlines and followed by a space, a newline or the end. On success they are stored in
+  // values and consumed; otherwise NOTHING is consumed (tabs, CR, comments, signs, longer numbers)
+  // and the caller takes the general path (next_unsigned / next), which words the errors.
+  bool next_plain_unsigned(std::uint32_t* values, int count) {
+    const char* p = pos_;
+    std::size_t lines = 0;
+    for (int k = 0; k < count; ++k) {
+      while (p != end_ && (*p == ' ' || *p == '\n')) lines += *p++ == '\n';
+      const char* first = p;
+      std::uint32_t x;
+      int digits = end_ - p >= 8 ? swar_digits(p, x) : 8;
+      if (digits < 8) {
+        p += digits;
+      } else {  // 8 or more digits, or near the end of the buffer
+        x = 0;
+        while (p != end_) {
+          const unsigned d = static_cast<unsigned char>(*p) - unsigned('0');
+          if (d > 9) break;
+          x = x * 10 + d;
+          ++p;
+        }
+        digits = static_cast<int>(p - first);
+      }
+      if (digits == 0 || digits > 9 || (p != end_ && *p != ' ' && *p != '\n')) return false;
+      values[k] = x;
+    }
+    pos_ = p;
+    line_ += lines;
+    last_line_ = line_;
+    return true;
+  }
+  // The common layout of an integer block line, faster: the previous line's '\n' (if any), then
+  // `count` decimals of 1..7 digits separated by single spaces, then '\n' (not consumed). Same values,
+  // state and all-or-nothing contract as next_plain_unsigned, which it falls back to otherwise.
+  bool next_plain_line(std::uint32_t* values, int count) {
+    const char* p = pos_;
+    if (end_ - p < 9 * count + 1) return next_plain_unsigned(values, count);  // SWAR loads need 8 bytes
+    std::size_t line = line_;
+    if (*p == '\n') ++p, ++line;
+    for (int k = 0; k < count; ++k) {
+      std::uint32_t x;
+      const int digits = swar_digits(p, x);
+      if (digits == 0 || digits == 8 || p[digits] != (k + 1 < count ? ' ' : '\n'))
+        return next_plain_unsigned(values, count);
+      values[k] = x;
+      p += k + 1 < count ? digits + 1 : digits;
+    }
+    pos_ = p;
+    line_ = last_line_ = line;
+    return true;
+  }
+  // Bulk fast path for one finite double in plain decimal or exponent form (std::from_chars, at most
+  // kMaxNumberChars), same separators and same all-or-nothing contract as next_plain_unsigned.
+  bool next_plain_double(double& value);
+  // Saved position, to re-read a stretch with the general path (which reports errors precisely).
+  struct State {
+    const char* pos;
+    std::size_t line, last_line;
+  };
+  State save() const { return {pos_, line_, last_line_}; }
+  void restore(const State& s) { pos_ = s.pos, line_ = s.line, last_line_ = s.last_line; }
   bool peek(Token& token) {
     const char* saved = pos_;
     const std::size_t saved_line = line_;
@@ -129,6 +204,24 @@ class Tokenizer {
   }
 
  private:
+  // The leading decimal digits of the 8 bytes at p (SWAR): their count n (8 when all 8 are digits,
+  // then `value` is not set) and, for n < 8, their value.
+  static int swar_digits(const char* p, std::uint32_t& value) {
+    std::uint64_t chunk;
+    std::memcpy(&chunk, p, 8);
+    const std::uint64_t t = chunk - 0x3030303030303030ull;  // bytes '0'..'9' -> 0..9
+    // High bit of each byte that is not a digit (borrows and carries only reach later bytes).
+    const std::uint64_t non_digit = ((t + 0x7676767676767676ull) | t) & 0x8080808080808080ull;
+    if (non_digit == 0) return 8;
+    const int n = __builtin_ctzll(non_digit) >> 3;
+    if (n == 0) return 0;
+    std::uint64_t v = t << (8 * (8 - n));  // the n digits, most significant first, after leading zeros
+    v = ((v & 0x0F0F0F0F0F0F0F0Full) * 2561) >> 8;
+    v = ((v & 0x00FF00FF00FF00FFull) * 6553601) >> 16;
+    v = ((v & 0x0000FFFF0000FFFFull) * 42949672960001ull) >> 32;
+    value = static_cast<std::uint32_t>(v);
+    return n;
+  }
   enum : unsigned char { kTokenChar = 0, kSpace = 1, kNewline = 2, kComment = 3 };
   unsigned kind(char c) const {
     const unsigned char u = static_cast<unsigned char>(c);

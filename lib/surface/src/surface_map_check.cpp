@@ -1,30 +1,22 @@
 // Exact surface-map check (see surface_map_check.hpp). Every cone sign is volmap::orient3d; exact
 // corner hits use volmap::points_equal.
 #include <volmap/core/boundary_faces.hpp>
+#include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map_check.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace volmap {
 
 namespace {
-
-// Neumaier-compensated sum of one coordinate.
-struct CompensatedSum {
-  double sum = 0, comp = 0;
-  void add(double x) {
-    const double t = sum + x;
-    comp += std::fabs(sum) >= std::fabs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + comp; }
-};
 
 bool has_at_most_6_decimals(double x) {
   const double s = x * 1e6;
@@ -35,18 +27,31 @@ bool has_at_most_6_decimals(double x) {
 
 SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryMap& map, const Domain* domain,
                                         const SurfaceMapCheckOptions& options) {
-  SurfaceMapCheckResult r;
-  const std::size_t nv = mesh.num_vertices();
   const std::vector<std::uint64_t> faces = boundary_half_faces(mesh);
-  const std::vector<std::uint32_t> bverts = boundary_vertex_ids(mesh, faces);
+  std::vector<std::array<std::uint32_t, 3>> boundary(faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) boundary[i] = half_face_vertices(mesh, faces[i]);
+  return check_surface_map(mesh.num_vertices(), boundary, map, domain, options);
+}
+
+SurfaceMapCheckResult check_surface_map(std::size_t nv, const std::vector<std::array<std::uint32_t, 3>>& faces,
+                                        const BoundaryMap& map, const Domain* domain,
+                                        const SurfaceMapCheckOptions& options) {
+  SurfaceMapCheckResult r;
+  std::vector<char> is_boundary(nv, 0);
+  for (const auto& t : faces)
+    for (auto v : t) {
+      if (v >= nv) throw Error(ErrorKind::BadInput, "", 0, "a boundary triangle names vertex " + std::to_string(v) + " of " + std::to_string(nv));
+      is_boundary[v] = 1;
+    }
+  std::vector<std::uint32_t> bverts;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (is_boundary[v]) bverts.push_back(v);
   r.boundary_triangles = faces.size();
   r.boundary_vertices = bverts.size();
   r.map_entries = map.size();
 
   // slot[v] = index of v's map entry, -1 none; boundary flag.
   std::vector<std::int32_t> slot(nv, -1);
-  std::vector<char> is_boundary(nv, 0);
-  for (auto v : bverts) is_boundary[v] = 1;
   for (std::size_t i = 0; i < map.size(); ++i) {
     const std::uint32_t v = map.vids[i];
     if (v >= nv || !is_boundary[v]) {
@@ -79,16 +84,12 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
   } else if (domain && domain->kind == DomainKind::Custom) {
     r.kernel = domain->kernel;
   } else {
-    CompensatedSum s[3];
-    for (auto v : bverts)
-      for (int k = 0; k < 3; ++k) s[k].add(map.xyz[3 * slot[v] + k]);
-    for (int k = 0; k < 3; ++k) r.kernel[k] = s[k].value() / static_cast<double>(bverts.size());
+    r.kernel = compensated_centroid(bverts.size(), [&](std::size_t i) { return &map.xyz[3 * std::size_t(slot[bverts[i]])]; });
   }
 
-  for (auto hf : faces) {
-    const auto tri = half_face_vertices(mesh, hf);
-    const int s = orient3d(&map.xyz[3 * slot[tri[0]]], &map.xyz[3 * slot[tri[1]]], &map.xyz[3 * slot[tri[2]]],
-                           r.kernel.data());
+  for (const auto& tri : faces) {
+    const int s = orient3d(&map.xyz[3 * slot[tri[0]]], &map.xyz[3 * slot[tri[1]]],
+                           &map.xyz[3 * slot[tri[2]]], r.kernel.data());
     if (s > 0)
       ++r.positive;
     else if (s < 0)
@@ -111,7 +112,10 @@ SurfaceMapCheckResult check_surface_map(const TetMeshData& mesh, const BoundaryM
     }
     for (std::size_t i = 0; i < map.size(); ++i) {
       double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += (map.xyz[3 * i + k] - options.kernel[k]) * (map.xyz[3 * i + k] - options.kernel[k]);
+      for (int k = 0; k < 3; ++k) {
+        const double dk = map.xyz[3 * i + k] - options.sphere_centre[k];
+        d2 += dk * dk;
+      }
       const double dist = std::fabs(std::sqrt(d2) - options.sphere_radius);
       r.max_domain_distance = std::max(r.max_domain_distance, dist);
       if (dist > r.tolerance) ++r.off_domain;

@@ -126,7 +126,7 @@ std::string surface_topology_problem(const TriangleSurface& s) {
 TetMeshData tetrahedralize_surface(const TriangleSurface& s, const TetrahedralizeOptions& options) {
   const std::string problem = surface_topology_problem(s);
   if (!problem.empty()) throw Error(ErrorKind::BadInput, problem);
-  if (!(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "quality bound must be >= 1");
+  if (!options.coarse && !(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "quality bound must be >= 1");
   tetgenio in, out;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(s.num_vertices());
@@ -146,7 +146,9 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   }
   std::ostringstream sw;
   sw.precision(17);
-  sw << "pq" << options.quality << "YQz";
+  sw << "p";
+  if (!options.coarse) sw << "q" << options.quality;
+  sw << "YQz";
   if (options.max_volume > 0) sw << "a" << options.max_volume;
   std::string switches = sw.str();
   // TetGen runs in a child process: Debian's libtet frees its pools twice when it throws an error

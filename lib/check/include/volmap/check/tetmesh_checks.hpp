@@ -5,7 +5,8 @@
 // Tet mesh checks, in this order (keys used in JSON):
 //   orientation        every tet VOLMAP-positive: orient3d(v0,v1,v2,v3) > 0 (exact, all tets; quirk 18:
 //                      VOLMAP looks at tet 0 only). Classified as all positive / coherently opposite
-//                      (no positive tet, some negative) / mixed (both signs present).
+//                      (no positive tet, some negative) / mixed (both signs present); the detail is
+//                      describe_orientation's sentence (orientation.hpp).
 //   volume             no zero-volume tet (exact orient3d == 0; repeated vertex ids count as zero).
 //   genus              the boundary surface is a closed 2-manifold of genus 0.
 //   components         one tet component (tets joined through faces), one boundary shell, no
@@ -20,6 +21,7 @@
 // malformed arrays (ids out of range, non-finite coordinates).
 #pragma once
 
+#include <volmap/check/orientation.hpp>
 #include <volmap/io/io_surface.hpp>
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/predicates.hpp>
@@ -38,14 +40,6 @@ struct CheckItem {
   bool passed = false;
   std::string detail;  // one line with the figures (and the reason when failed)
 };
-
-enum class OrientationClass {
-  AllPositive,         // VOLMAP convention (zero-volume tets are the volume check's business)
-  CoherentlyOpposite,  // no positive tet, at least one negative: flip every tet to fix
-  Mixed,               // both signs present: not fixable by a global flip
-  Empty                // no tets at all (or only zero-volume ones)
-};
-const char* to_string(OrientationClass c);
 
 struct TetMeshCheckOptions {
   SelfIntersectionOptions self_intersection;

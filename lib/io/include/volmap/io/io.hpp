@@ -8,12 +8,14 @@
 // committing) and print doubles in shortest round-trip form (std::to_chars), so every double read
 // back is bit-identical.
 // Vertex ids in files: Medit 1-based, maps/VTK/VTU 0-based; in memory 0-based. Tet order and each
-// tet's vertex order are kept exactly as in the file.
+// tet's vertex order are kept exactly as in the file (Gmsh and OpenVolumeMesh files come out in the
+// opposite orientation convention; the checks say so and `volmap-tetmesh-check --fix` flips them).
 #pragma once
 
 #include <volmap/core/error.hpp>
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/io/atomic_file.hpp>
+#include <volmap/io/read_notes.hpp>
 #include <volmap/predicates_rational.hpp>
 
 #include <string>
@@ -57,17 +59,47 @@ void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vect
 void write_vtu(AtomicOutput& out, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
                VtuEncoding encoding = VtuEncoding::AppendedRaw);
 
-// By extension (.mesh, .vtk, .vtu, case-insensitive); throws Error(Unsupported) for anything else.
-enum class TetMeshFormat { Medit, Vtk, Vtu, Unknown };
+// Gmsh .msh, versions 2.2 (also 2.0/2.1) and 4.1, ASCII or binary (either byte order, as the file's
+// endianness marker says; 4.1's data-size 4 or 8). Linear tetrahedra (type 4) are read in file order;
+// points, lines, triangles and quadrangles of any order are skipped and counted in `notes`; any other
+// 3D element (hexahedra, prisms, pyramids, curved tets) is Unsupported. Nodes are renumbered 0..n-1 in
+// file order, nodes used by no tet are dropped (both noted). Tet labels: the physical tag (4.1: the
+// first physical tag of the tet's volume entity; 0 when it has none); a file without any physical
+// tag on its tets but with several volume entities gets the entity tags instead. Vertex labels come
+// from a one-component $NodeData named "label" (what write_msh stores), else 0.
+TetMeshData read_msh(const std::string& path, TetMeshReadNotes* notes = nullptr);
+// Writes MSH 4.1 (ASCII, or little-endian binary with data-size 8): one volume entity per distinct tet
+// label (physical tag = the label when non-zero), one element block per run of equal labels, node
+// tags 1..n, element tags 1..m, vertex labels as $NodeData "label" when not all zero. Tets are
+// written in our vertex order, so Gmsh sees VOLMAP-positive tets as negative (see io.hpp header).
+enum class MshEncoding { Ascii, Binary };
+void write_msh(const std::string& path, const TetMeshData& mesh, MshEncoding encoding = MshEncoding::Ascii);
+void write_msh(AtomicOutput& out, const TetMeshData& mesh, MshEncoding encoding = MshEncoding::Ascii);
+
+// OpenVolumeMesh text format (`OVM ASCII`: Vertices, Edges, Faces as half-edge ids 2e/2e+1,
+// Polyhedra as half-face ids 2f/2f+1; property sections after Polyhedra are ignored). Every cell
+// must be a tetrahedron: 4 triangular half-faces forming a closed, consistently oriented surface;
+// other cells are Unsupported, naming the cell. Tet vertex order is OpenVolumeMesh's: the vertices
+// of the cell's first half-face, then the remaining vertex; half-face normals point into the cell,
+// so these tets have orient3d < 0. Vertices keep their file index (0-based, as boundary maps use).
+TetMeshData read_ovm(const std::string& path);
+
+// By extension (.mesh, .vtk, .vtu, .msh, .ovm; case-insensitive); throws Error(Unsupported) for
+// anything else. .ovm is read-only.
+enum class TetMeshFormat { Medit, Vtk, Vtu, Msh, Ovm, Unknown };
 TetMeshFormat tet_mesh_format(const std::string& path);
 // Throws Error(Unsupported) naming `path` unless its extension names a format read_tet_mesh reads
-// (or, `for_writing`, one write_tet_mesh writes: .mesh, .vtk, .vtu). Tools check it before any work.
+// (or, `for_writing`, one write_tet_mesh writes: .mesh, .vtk, .vtu, .msh). Tools check it before any work.
 void require_tet_mesh_extension(const std::string& path, bool for_writing = false);
+const char* tet_mesh_format_name(TetMeshFormat format);  // "mesh", "vtk", "vtu", "msh", "ovm", "unknown"
 TetMeshData read_tet_mesh(const std::string& path);
+// Same, also returning what the reader skipped or renumbered (notes.format is always set).
+TetMeshData read_tet_mesh(const std::string& path, TetMeshReadNotes& notes);
 void write_tet_mesh(const std::string& path, const TetMeshData& mesh);  // .vtk ascii, .vtu appended raw
 struct TetMeshWriteOptions {
   bool vtk_binary = false;
   VtuEncoding vtu_encoding = VtuEncoding::AppendedRaw;
+  MshEncoding msh_encoding = MshEncoding::Ascii;
 };
 void write_tet_mesh(const std::string& path, const TetMeshData& mesh, const TetMeshWriteOptions& options);
 // Into a prepared output, by the extension of out.destination() (no commit).

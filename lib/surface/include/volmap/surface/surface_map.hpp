@@ -1,7 +1,7 @@
 // volmap/surface/surface_map.hpp — boundary maps of a genus-0 tet mesh onto a base domain
 // (volmap-reference.md §4, VOLMAP paper §5 and Fig. 4), verified with the exact check.
 //
-// Algorithm:
+// Algorithm (the boundary travels as an OpenMesh TriMesh, <volmap/surface/boundary_surface.hpp>):
 //  1. Node vertices: the boundary vertex nearest to each node's probe (ties -> smallest vid; a vertex
 //     already taken by an earlier node is skipped, so nodes always get distinct vertices).
 //  2. Arcs, in the domain's order: Dijkstra shortest paths (edge length) over boundary edges, never
@@ -15,15 +15,17 @@
 //     with a spanning tree of the nodes traced first, which keeps the partial embedding equivalent
 //     to the domain's at every step. Surfaces too coarse for the domain are then retried after 1 and
 //     2 rounds of splitting every boundary edge (on the tets as well).
-//  3. Refinement on the tet mesh (new vertices appended, ids stable): after each arc every boundary
-//     edge joining two arc/node vertices that is not an arc edge is split at its midpoint (all tets
-//     around it are split), which keeps a free path between any two arcs (paper Fig. 4) and makes
-//     every chart Tutte-embeddable. The splits are made on the working boundary surface (flat
-//     arrays; triangles around a vertex in one pool) and replayed at the end on a TetMesh with
-//     TetMesh::split_edge, which appends vertices in the same order; new tets are checked exactly.
+//  3. Refinement (new vertices appended, ids stable): after each arc every boundary edge joining two
+//     arc/node vertices that is not an arc edge is split at its midpoint, which keeps a free path
+//     between any two arcs (paper Fig. 4) and makes every chart Tutte-embeddable. The splits are
+//     made on the surface (OpenMesh's 2-to-4 split) and replayed at the end on a TetMesh with
+//     TetMesh::split_edge (all tets around the edge), which appends vertices in the same order; the
+//     new tets are checked exactly.
 //  4. Charts: boundary triangles flooded between arcs, each matched to its domain face by the side of
 //     its arcs; Tutte's embedding (uniform weights) in the face plane with the chart boundary on the
-//     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart.
+//     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart. A
+//     chart that rounding leaves inverted (long thin limbs shrink exponentially under Tutte) is
+//     re-solved with stretch-reducing positive weights until every triangle is positive (exact).
 //  5. Verification: the exact surface-map check on the numbers that will be written.
 #pragma once
 
@@ -45,6 +47,8 @@ struct SurfaceMapResult {
   std::vector<std::uint32_t> node_vertices;  // vertex of every domain node
   std::size_t collided_nodes = 0;            // nodes whose nearest vertex was taken by an earlier node
   SurfaceMapCheckResult check;               // the exact check of `map` on `mesh`
+  std::string attempt;                       // the attempt that produced the map (arc order, subdivisions)
+  std::vector<std::string> failed_attempts;  // "<attempt>: <reason>" for every earlier attempt
 };
 
 // Maps the boundary of `mesh` onto `domain`. Throws Error(Failed) when an arc cannot be traced, the
@@ -52,11 +56,13 @@ struct SurfaceMapResult {
 // boundary is not a closed manifold surface.
 SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain);
 
-// Sphere maps: the central projection of a star-shaped map onto the sphere of radius `radius`
-// around `centre` (points x -> centre + radius * (x - centre) / |x - centre|). The projection keeps
-// every boundary triangle's orientation with respect to the centre in exact arithmetic; the result
-// is re-checked exactly (kernel = centroid of the projected points). Throws Error(Failed) when
-// rounding breaks a triangle.
+// Sphere maps: the central projection of a star-shaped map (in practice the cube map) onto the
+// sphere of radius `radius` around `centre`, judged like every map: every cone positive about the
+// centroid of the image points (volmap-reference.md §5). The projection keeps the cones positive
+// about the centre; when a thin triangle's plane passes between the centre and the centroid, the
+// image is balanced (relaxation on the sphere and re-centring, both keeping every cone positive
+// about the centre, exact) until the centroid is inside every cone. The result is re-checked with
+// check_surface_map (sphere options). Throws Error(Failed) when that does not converge.
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Point3& centre, double radius);
 
 // The sphere domain used by `volmap-surface-map sphere`: centre (50,50,50), radius 50.

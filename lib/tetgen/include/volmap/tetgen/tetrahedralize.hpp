@@ -1,6 +1,6 @@
 // volmap/tetgen/tetrahedralize.hpp — closed triangle surface -> tet mesh with TetGen (libtet), the way
 // VOLMAP's `tetmesh_generation` does it (switches p, q<quality>, Y: the boundary is preserved, no
-// Steiner points on it), written in the VOLMAP orientation convention (orient3d(v0,v1,v2,v3) > 0;
+// Steiner points on it; `coarse` drops q: no quality refinement, so most tets touch the boundary), written in the VOLMAP orientation convention (orient3d(v0,v1,v2,v3) > 0;
 // TetGen's own tets have the opposite sign and are flipped after an exact check of each one).
 #pragma once
 
@@ -34,6 +34,7 @@ std::string surface_topology_problem(const TriangleSurface& surface);
 struct TetrahedralizeOptions {
   double quality = 1.414;  // radius-edge ratio bound (TetGen q)
   double max_volume = 0;   // TetGen a<V> when > 0
+  bool coarse = false;     // no quality refinement (TetGen without q; `quality` is ignored)
 };
 
 // Throws Error(BadInput) for topological problems, Error(Failed) with TetGen's reason when TetGen
