@@ -4,6 +4,7 @@
 
 #include <volmap/core/local_tables.hpp>
 #include <volmap/volume/cone_repair.hpp>
+#include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/ffm.hpp>
 
 #include "../tests/support/map_test_meshes.hpp"

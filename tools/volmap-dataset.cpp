@@ -1,11 +1,13 @@
 // volmap-dataset — extend the benchmark (VOLMAP paper, Sections 6-7) in one command:
-//   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star]
+//   volmap-dataset <surfaces_dir> <dataset_dir> --group G7 [--domains cube,tet,pyr,octa,star,sphere,polycube:<cells>]
 //                  [--jobs N] [--quality 1.414 | --coarse] [--max-volume V] [--decimate F] [--keep-going]
 //                  [--keep-unrefined] [--json]
 // For each surface (.obj .off .stl .ply): tetrahedralize (which checks the surface first), run the
 // tet-mesh checks, compute every domain's boundary map on ONE mesh (as VOLMAP does), verify every map
 // exactly, then publish <dataset>/<group>/<name>.mesh and <group>_<dom>/<name>_<dom>.txt. Every step
-// is one of the volmap-* tools run as a child process; a surface that fails any step is skipped and
+// is one of the volmap-* tools run as a child process; a polycube domain (`polycube:<cells file|cross7|L3>`,
+// at most one) is published under the benchmark's suffix `pc`, with its cells beside the map
+// (<group>_pc/<name>_pc_cells.txt); a surface that fails any step is skipped and
 // the reason goes to <dataset>/<group>_log.txt. Maps made before a later domain refines the mesh are
 // carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
 // Tet meshes (.mesh .vtk .vtu, VOLMAP-positive) in the folder are used as they are, without TetGen.
@@ -20,6 +22,7 @@
 #include <volmap/tetgen/decimate.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/map_extension.hpp>
+#include <volmap/surface/polycube.hpp>
 #include "support/process.hpp"
 
 #include <algorithm>
@@ -103,6 +106,20 @@ void copy_atomically(const fs::path& from, const fs::path& to) {
   volmap::write_text_atomically(to.string(), ss.str());
 }
 
+// The folder/file suffix of a domain: the benchmark's `pc` for polycube:<cells>, else its name.
+std::string domain_suffix(const std::string& dom) {
+  return dom.rfind(volmap::kPolycubePrefix, 0) == 0 ? "pc" : dom;
+}
+
+// The cells of a polycube domain as a cells file ("" for other domains).
+std::string cells_text(const std::string& dom) {
+  if (domain_suffix(dom) != "pc") return "";
+  std::string text = "# polycube cells (i j k), cell size 100\n";
+  for (const auto& c : volmap::polycube_cells(dom.substr(volmap::kPolycubePrefix.size())))
+    text += std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]) + "\n";
+  return text;
+}
+
 bool is_tet_mesh(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
@@ -153,7 +170,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   // interpolation (map_extension.hpp). Then every map is verified exactly; a map that fails (e.g. a
   // carried sphere map, whose midpoints leave the sphere) is recomputed on the final mesh, which may
   // refine again: repeat, a bounded number of times.
-  auto map_path = [&](const std::string& dom) { return work / (outcome.name + "_" + dom + ".txt"); };
+  auto map_path = [&](const std::string& dom) { return work / (outcome.name + "_" + domain_suffix(dom) + ".txt"); };
   std::vector<std::string> domains = opt.domains;
   // --keep-going: the mesh the domain failed on (and its map, if one was written) are kept in
   // <dataset>/<group>_failed/ to reproduce the failure; that folder is no benchmark group.
@@ -162,8 +179,9 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
     domains.erase(std::find(domains.begin(), domains.end(), dom));
     const fs::path kept = dataset / (group + "_failed");
     fs::create_directories(kept);
-    copy_atomically(mesh, kept / (outcome.name + "_" + dom + ".mesh"));
-    if (fs::exists(map_path(dom))) copy_atomically(map_path(dom), kept / (outcome.name + "_" + dom + ".txt"));
+    copy_atomically(mesh, kept / (outcome.name + "_" + domain_suffix(dom) + ".mesh"));
+    if (fs::exists(map_path(dom)))
+      copy_atomically(map_path(dom), kept / (outcome.name + "_" + domain_suffix(dom) + ".txt"));
     fs::remove(map_path(dom));
   };
   std::vector<std::string> pending = domains;
@@ -176,7 +194,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       const auto before = volmap::read_tet_mesh(mesh.string());
       if (auto e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map_path(dom).string(),
                              "--refined", refined.string()},
-                            work, "surface-map-" + dom);
+                            work, "surface-map-" + domain_suffix(dom));
           !e.empty()) {
         if (!opt.keep_going) return outcome.reason = e, outcome;
         drop(dom, e);
@@ -195,7 +213,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
     pending.clear();
     for (const auto& dom : domains) {
       if (!run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map_path(dom).string(), "--domain", dom},
-                    work, "surface-map-check-" + dom)
+                    work, "surface-map-check-" + domain_suffix(dom))
                .empty())
         pending.push_back(dom);
     }
@@ -205,7 +223,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       drop(dom, "map did not verify after " + std::to_string(kMaxPasses) + " passes: " +
                     run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map_path(dom).string(),
                               "--domain", dom},
-                             work, "surface-map-check-" + dom));
+                             work, "surface-map-check-" + domain_suffix(dom)));
   else if (!pending.empty())
     return outcome.reason = "maps did not verify after " + std::to_string(kMaxPasses) + " passes", outcome;
   if (domains.empty()) return outcome.reason = "no domain could be mapped", outcome;
@@ -215,9 +233,12 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
 
   fs::create_directories(dataset / group);
   for (const auto& dom : domains) {
-    fs::create_directories(dataset / (group + "_" + dom));
-    copy_atomically(work / (outcome.name + "_" + dom + ".txt"),
-                    dataset / (group + "_" + dom) / (outcome.name + "_" + dom + ".txt"));
+    const std::string suffix = domain_suffix(dom);
+    const fs::path folder = dataset / (group + "_" + suffix);
+    fs::create_directories(folder);
+    if (suffix == "pc")
+      volmap::write_text_atomically((folder / (outcome.name + "_pc_cells.txt")).string(), cells_text(dom));
+    copy_atomically(map_path(dom), folder / (outcome.name + "_" + suffix + ".txt"));
   }
   outcome.tets = volmap::read_tet_mesh(mesh.string()).num_tets();
   copy_atomically(mesh, dataset / group / (outcome.name + ".mesh"));  // last: a mesh means a complete case
@@ -241,7 +262,8 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("dataset_dir", dataset_dir, "VOLMAP layout root to write into (created)")->required();
   app.add_option("--group", group, "group folder name, e.g. G7")->required();
-  app.add_option("--domains", domains_text, "comma-separated domains (cube,tet,pyr,octa,star,sphere)");
+  app.add_option("--domains", domains_text,
+                 "comma-separated domains (cube,tet,pyr,octa,star,sphere,polycube:<cells file|cross7|L3>)");
   app.add_option("--jobs,-j", jobs, "surfaces processed in parallel")->check(CLI::Range(1, 64));
   auto* quality_option = app.add_option("--quality", opt.quality, "TetGen radius-edge bound (q switch), at least 1")
                               ->check(volmap_tools::finite_range(1.0, 1e300));
@@ -270,7 +292,14 @@ int main(int argc, char** argv) {
     {
       std::stringstream ss(domains_text);
       for (std::string d; std::getline(ss, d, ',');)
-        if (!d.empty()) {
+        if (d.rfind(volmap::kPolycubePrefix, 0) == 0) {  // checked now: a bad polycube is bad input
+          std::string cells = d.substr(volmap::kPolycubePrefix.size());
+          if (!volmap::is_builtin_polycube_name(cells)) cells = fs::absolute(cells).string();  // children's cwd
+          volmap::polycube_domain(cells);
+          if (std::any_of(domains.begin(), domains.end(), [](const std::string& o) { return domain_suffix(o) == "pc"; }))
+            throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "at most one polycube domain per group (suffix pc)");
+          domains.push_back(std::string(volmap::kPolycubePrefix) + cells);
+        } else if (!d.empty()) {
           const auto& known = volmap::volmap_domain_suffixes();
           if (std::find(known.begin(), known.end(), d) == known.end() || d == "pc")
             throw volmap::Error(volmap::ErrorKind::BadInput, "unsupported domain '" + d + "'");

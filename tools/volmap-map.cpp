@@ -1,7 +1,7 @@
 // volmap-map — certified robust volume mapper (docs/mapping.md), candidate-method contract:
 //   volmap-map <in.mesh> <map.txt> <out.mesh> [--method ffm|tlc] [--refined-input path]
 //              [--rationals path] [--max-growth 0.05] [--no-refine] [--time-limit s] [--threads n] [--json]
-//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local]   (cascade tuning, see volume_map.hpp)
+//              [--tlc-share 0.5] [--ffm-inner n] [--ffm-rest-first] [--no-local] [--no-kernel-descent]   (cascade tuning, see volume_map.hpp)
 //              [--initial init.(mesh|vtk|vtu)]
 // in.mesh may be .mesh/.vtk/.vtu/.msh/.ovm and must be a valid VOLMAP input (input_mesh.hpp: what
 // volmap-tetmesh-check accepts), else exit 2 naming the file and the problem; an input in the
@@ -19,9 +19,13 @@
 // --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte or --initial → TLC → link-kernel →
 // local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
+// Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
+// When no map can exist, `infeasible` (JSON) says so: scope "any-refinement" (the boundary image
+// encloses a non-positive volume) or "this-connectivity" with the exact local certificates of
+// volmap/volume/infeasibility.hpp (kind, simplex, constraint tets, multipliers); exit 1 then.
 // Exit: 0 certified; 1 ran but not injective (the outputs are STILL written with the best map found,
 // so it can be inspected; it must not be used as a valid map); 2 usage or bad input.
 #include "support/input_mesh.hpp"
@@ -42,7 +46,7 @@ int main(int argc, char** argv) {
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false, no_local = false;
+  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
   using volmap_tools::finite_non_negative;
   app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
@@ -63,6 +67,7 @@ int main(int argc, char** argv) {
   app.add_option("--ffm-inner", ffm_inner, "cascade: L-BFGS iterations per FFM outer step (0 = default)")
       ->check(CLI::Range(0, 1 << 30));
   app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
+  app.add_flag("--no-kernel-descent", no_kernel_descent, "cascade: skip the kernel-descent stages (exact single-vertex moves driven by the bad tets)");
   app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
@@ -114,6 +119,7 @@ int main(int argc, char** argv) {
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;
     opt.local_untangle = !no_local;
+    opt.kernel_descent = !no_kernel_descent;
     const volmap::VolumeMapResult r =
         volmap_tools::naming_file(in_path, [&] { return volmap::compute_volume_map(input, map, opt); });
 
@@ -139,7 +145,12 @@ int main(int argc, char** argv) {
 
     if (json) {
       nlohmann::json stages = nlohmann::json::array();
-      for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"seconds", s.seconds}, {"nonpositive_after", s.nonpositive_after}});
+      for (const auto& s : r.stages) {
+        nlohmann::json stage = {{"name", s.name}, {"seconds", s.seconds}, {"nonpositive_after", s.nonpositive_after},
+                                {"tets_after", s.tets_after}};
+        if (!s.failure.empty()) stage["failure"] = s.failure;
+        stages.push_back(stage);
+      }
       nlohmann::json j{{"certified", certified},
                        {"certified_on", "the written files, read back (check_map)"},
                        {"method", method},
@@ -168,17 +179,36 @@ int main(int argc, char** argv) {
                        {"stages", stages}};
       if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.feasibility.infeasible_with_any_refinement())
-        j["infeasible"] = "the boundary map encloses a non-positive volume: no injective map exists at any refinement";
+        j["infeasible"] = {{"scope", "any-refinement"},
+                           {"reason", "the boundary map encloses a non-positive volume: no injective map exists at any refinement"}};
+      else if (!r.refined && !r.infeasibility.empty()) {
+        nlohmann::json certificates = nlohmann::json::array();
+        for (const auto& c : r.infeasibility) {
+          std::vector<std::string> multipliers;
+          for (const auto& m : c.multipliers) multipliers.push_back(m.str());
+          certificates.push_back({{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
+                                  {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}});
+        }
+        j["infeasible"] = {{"scope", "this-connectivity"},
+                           {"reason", "exact local certificate: no map with every tet positive exists at the input connectivity"},
+                           {"certificates", certificates}};
+      }
       return volmap_tools::print_json(std::move(j), code);
     }
     std::printf("%s: %s (%zu tets, %zu non-positive, growth %.4f, %s, %.2f s)\n", out_path.c_str(),
                 certified ? "certified injective" : "NOT injective", written.num_tets(), check.output.zero + check.output.negative,
                 r.growth(), certified ? r.certified_by.c_str() : "-", r.seconds);
-    if (r.feasibility.infeasible_with_any_refinement())
+    if (r.feasibility.infeasible_with_any_refinement()) {
       std::printf("  the boundary map encloses a non-positive volume: no injective map exists at any refinement\n");
-    else if (!certified && refined_path.empty() && !no_refine)
+    } else if (!r.refined && !r.infeasibility.empty()) {
+      std::printf("  infeasible at the input connectivity (exact local certificates):\n");
+      for (const auto& c : r.infeasibility) std::printf("    %s\n", volmap::describe(c).c_str());
+    } else if (!certified && refined_path.empty() && !no_refine) {
       std::printf("  refinement was off: give --refined-input <path> to allow chord splits and cone repair\n");
-    for (const auto& s : r.stages) std::printf("  %-18s %8.3f s  non-positive after: %zu\n", s.name.c_str(), s.seconds, s.nonpositive_after);
+    }
+    for (const auto& s : r.stages)
+      std::printf("  %-22s %8.3f s  non-positive after: %zu  tets: %zu%s%s\n", s.name.c_str(), s.seconds, s.nonpositive_after, s.tets_after,
+                  s.failure.empty() ? "" : "  (failed, undone: ", s.failure.empty() ? "" : (s.failure + ")").c_str());
     return code;
   }, &json);
 }

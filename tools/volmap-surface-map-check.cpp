@@ -1,4 +1,4 @@
-// volmap-surface-map-check <in.mesh> <map.txt> [--domain name|file] [--json]
+// volmap-surface-map-check <in.mesh> <map.txt> [--domain name|polycube:<cells>|file] [--cell-size S] [--json]
 // The exact surface-map sanity check (see <volmap/surface/surface_map_check.hpp>) of a valid VOLMAP
 // input mesh (input_mesh.hpp; else exit 2 naming it). Exit 0 = valid,
 // 1 = check failed (inverted/degenerate cones, coverage, off-domain points, corners), 2 = bad input.
@@ -6,6 +6,7 @@
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/surface_map.hpp>
 #include <volmap/surface/surface_map_check.hpp>
@@ -20,11 +21,13 @@ int main(int argc, char** argv) {
                "volmap-surface-map-check"};
   std::string mesh_path, map_path, domain_arg;
   bool json = false, either_sign = false;
-  double tolerance = 0;
+  double tolerance = 0, cell_size = volmap::kDefaultPolycubeCellSize;
   app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm)")->required();
   app.add_option("map", map_path, "boundary map: one 'vid x y z' line per boundary vertex")->required();
-  app.add_option("--domain", domain_arg, "cube|tet|pyr|octa|star|sphere or a custom domain file: also check that "
-                                         "points lie on the domain and corners hit their targets exactly");
+  app.add_option("--domain", domain_arg,
+                 "cube|tet|pyr|octa|star|sphere, polycube:<cells file|cross7|L3> or a custom domain file: also "
+                 "check that points lie on the domain and corners hit their targets exactly");
+  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)")->check(volmap_tools::finite_positive());
   app.add_option("--tolerance", tolerance, "max distance from the domain boundary (default 0: 1e-9 x domain "
                                            "size, 1e-6 for maps written with 6 decimals)")
       ->check(volmap_tools::finite_non_negative());
@@ -34,7 +37,10 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     std::optional<volmap::Domain> domain;
     const bool sphere = domain_arg == "sphere" || domain_arg == "SPHERE";
-    if (!domain_arg.empty() && !sphere) domain = volmap_tools::domain_from_name_or_file(domain_arg);
+    if (domain_arg.rfind(volmap::kPolycubePrefix, 0) == 0)
+      domain = volmap::polycube_domain(domain_arg.substr(volmap::kPolycubePrefix.size()), cell_size);
+    else if (!domain_arg.empty() && !sphere)
+      domain = volmap_tools::domain_from_name_or_file(domain_arg);
     volmap_tools::InputMeshes inputs("volmap-surface-map-check", &json);
     const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);

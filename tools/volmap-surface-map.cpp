@@ -1,5 +1,7 @@
-// volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom> <in.mesh> <out_map.txt> [--domain file]
+// volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom|polycube> <in.mesh> <out_map.txt>
+//                    [--domain file] [--cells <cells file|cross7|L3>] [--cell-size S]
 //                    [--refined out.mesh] [--volmap-precision] [--json]
+// `polycube:<cells>` is the same as `polycube --cells <cells>` (<volmap/surface/polycube.hpp>).
 // Maps the boundary of a genus-0 tet mesh (a valid VOLMAP input: input_mesh.hpp) onto a base domain
 // (see <volmap/surface/surface_map.hpp>), checks the map exactly and only then writes it (shortest
 // round-trip doubles, sorted by vid) and, when edges were split, the refined tet mesh the map refers
@@ -12,6 +14,7 @@
 #include "support/tool_common.hpp"
 
 #include <volmap/surface/domain.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/surface_map.hpp>
 
@@ -23,12 +26,18 @@ int main(int argc, char** argv) {
   CLI::App app{"Map the boundary of a tet mesh onto a base domain; the map is verified exactly before it "
                "is written.",
                "volmap-surface-map"};
-  std::string domain_name, mesh_path, map_path, domain_file, refined_path;
+  std::string domain_name, mesh_path, map_path, domain_file, refined_path, cells;
+  double cell_size = volmap::kDefaultPolycubeCellSize;
   bool json = false, volmap_precision = false;
-  app.add_option("domain", domain_name, "cube, tet, pyr, octa, star, sphere or custom (with --domain)")->required();
+  app.add_option("domain", domain_name,
+                 "cube, tet, pyr, octa, star, sphere, custom (with --domain) or polycube (with --cells; or "
+                 "polycube:<cells>)")
+      ->required();
   app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
+  app.add_option("--cells", cells, "polycube cells: a file of 'i j k' lines, or cross7 / L3");
+  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)")->check(volmap_tools::finite_positive());
   app.add_option("--refined", refined_path,
                  "where to write the refined tet mesh (.mesh/.vtk/.vtu/.msh) when edges are split (default "
                  "<map without extension>_in.mesh)");
@@ -38,12 +47,22 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
     const bool sphere = domain_name == "sphere" || domain_name == "SPHERE";
+    if (domain_name.rfind(volmap::kPolycubePrefix, 0) == 0) {
+      if (!cells.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, "give the polycube cells once");
+      cells = domain_name.substr(volmap::kPolycubePrefix.size());
+      domain_name = "polycube";
+    }
+    const bool polycube = domain_name == "polycube";
+    if (!cells.empty() && !polycube) throw volmap::Error(volmap::ErrorKind::BadInput, "--cells is for the polycube domain");
+    if (polycube && cells.empty())
+      throw volmap::Error(volmap::ErrorKind::BadInput, "polycube domain needs --cells <file|cross7|L3>");
     const bool custom = domain_name == "custom" || domain_name == "CUSTOM";
     if (custom && domain_file.empty())
       throw volmap::Error(volmap::ErrorKind::BadInput, "custom domain needs --domain <file>");
     if (!custom && !domain_file.empty())
       throw volmap::Error(volmap::ErrorKind::BadInput, domain_file, 0, "--domain is for the custom domain only (got '" + domain_name + "')");
-    const volmap::Domain domain = custom ? volmap::parse_custom_domain(volmap::read_text_file(domain_file, 1 << 16), domain_file)
+    const volmap::Domain domain = polycube ? volmap::polycube_domain(cells, cell_size)
+                                  : custom ? volmap::parse_custom_domain(volmap::read_text_file(domain_file, 1 << 16), domain_file)
                                   : sphere ? volmap::builtin_domain("cube")  // star-shaped source map, projected afterwards
                                            : volmap::builtin_domain(domain_name);
     // The refined mesh exists only when the mapper splits edges, but its path is prepared (and
@@ -60,6 +79,7 @@ int main(int argc, char** argv) {
     volmap::require_tet_mesh_extension(mesh_path);
     files.input(mesh_path, "input mesh");
     files.input(domain_file, "--domain file");
+    if (polycube && cells != "cross7" && cells != "L3") files.input(cells, "--cells file");
     volmap::AtomicOutput& map_out = files.output(map_path, "output map");
     volmap::AtomicOutput& refined = files.tet_mesh_output(refined_out, "refined mesh");
 

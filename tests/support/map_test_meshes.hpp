@@ -44,4 +44,15 @@ inline std::vector<double> scrambled_target(const volmap::TetMeshData& m, const 
   return t;
 }
 
+// The boundary map of `target` on the vertices flagged in `bnd` (file order: increasing id).
+inline volmap::BoundaryMap boundary_map_of(const std::vector<std::uint8_t>& bnd, const std::vector<double>& target) {
+  volmap::BoundaryMap m;
+  for (std::size_t v = 0; v < bnd.size(); ++v)
+    if (bnd[v]) {
+      m.vids.push_back(std::uint32_t(v));
+      for (int i = 0; i < 3; ++i) m.xyz.push_back(target[3 * v + i]);
+    }
+  return m;
+}
+
 }  // namespace map_test

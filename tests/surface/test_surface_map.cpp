@@ -10,6 +10,7 @@
 #include <volmap/surface/surface_map.hpp>
 #include <volmap/surface/surface_map_check.hpp>
 
+#include "surface_map_test_util.hpp"
 #include "test_support.hpp"
 
 #include <sys/wait.h>
@@ -37,14 +38,8 @@ static std::vector<std::size_t> map_all(const std::string& name) {
     CAPTURE(name);
     CAPTURE(dn);
     const Domain d = builtin_domain(dn);
-    SurfaceMapResult r;
-    REQUIRE_NOTHROW(r = map_surface_to_domain(mesh, d));
     // Independent re-check: exact cones, coverage, all points on the domain, corners exact.
-    const auto c = check_surface_map(r.mesh, r.map, &d);
-    CHECK(c.ok);
-    CHECK(c.positive == c.boundary_triangles);
-    CHECK(c.corners_exact == d.num_nodes());
-    CHECK(c.max_domain_distance <= 1e-9 * d.size);
+    const SurfaceMapResult r = volmap_test::map_and_recheck(mesh, d);
     CHECK(r.mesh.num_vertices() == mesh.num_vertices() + r.added_vertices);
     // Refinement keeps every tet VOLMAP-positive and old vertices where they were.
     const auto signs = orient3d_tets(r.mesh.xyz.data(), r.mesh.num_vertices(), r.mesh.tets.data(), r.mesh.num_tets(), nullptr);

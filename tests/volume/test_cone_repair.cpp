@@ -6,6 +6,8 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/boundary_faces.hpp>
+#include <volmap/core/properties.hpp>
+#include <volmap/core/tet_mesh.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/predicates.hpp>
@@ -290,6 +292,80 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     CHECK(volmap::count_nonpositive(m.xyz, m.tets) == 0);
     if (r.failed_clusters == 0) CHECK(volmap::count_nonpositive(target, m.tets) == 0);
   }
+}
+
+TEST_CASE("cone repair on a TetMesh: every property follows the patches, the boundary and locked targets stay bit-identical") {
+  // Oracles: a tet property and the tet labels are both copied from the same parent, so after the
+  // repair label == 1000 + tag on every live tet; the oriented boundary triangles (brute force over
+  // the live tets) and every original vertex (position, locked target, vertex property) unchanged.
+  const int n = 6;
+  volmap::TetMeshData data = map_test::kuhn_grid(n);
+  for (std::size_t t = 0; t < data.num_tets(); ++t) data.tet_labels[t] = std::int32_t(1000 + t);
+  const auto bnd = map_test::grid_boundary_flags(n);
+  std::vector<double> target0 = data.xyz;
+  for (int c : {grid_id(n, 1, 1, 1), grid_id(n, 4, 2, 3), grid_id(n, 3, 4, 4)})
+    for (int i = 0; i < 3; ++i) target0[3 * c + i] += 0.3;
+  REQUIRE(volmap::count_nonpositive(target0, data.tets) > 0);
+  volmap::TetMesh mesh(data);
+  volmap::PositionProperty target(mesh);
+  volmap::VertexProperty<std::uint8_t> locked(mesh);
+  volmap::TetProperty<int> tag(mesh, -1);
+  volmap::VertexProperty<double> weight(mesh, -1.0);
+  for (std::uint32_t v = 0; v < mesh.num_vertex_slots(); ++v) {
+    for (int i = 0; i < 3; ++i) target[volmap::VertexId(v)][i] = target0[3 * v + i];
+    locked[volmap::VertexId(v)] = bnd[v];
+    weight[volmap::VertexId(v)] = 0.5 * v;
+  }
+  for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) tag[volmap::TetId(t)] = int(t);
+  auto oriented_boundary = [&mesh] {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    for (volmap::HalfFaceId h : mesh.boundary_half_faces()) {
+      const auto f = mesh.half_face_vertices(h);
+      std::array<std::uint32_t, 3> g = {f[0].idx(), f[1].idx(), f[2].idx()};
+      std::rotate(g.begin(), std::min_element(g.begin(), g.end()), g.end());
+      out.push_back(g);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto boundary0 = oriented_boundary();
+  const std::vector<double> positions0 = mesh.positions();
+  const std::size_t nv0 = mesh.num_vertices();
+  const auto r = volmap::cone_repair(mesh, target, locked);
+  CHECK(r.patches >= 1);
+  CHECK(r.failed_clusters == 0);
+  CHECK(mesh.num_free_tet_slots() + mesh.num_tets() == mesh.num_tet_slots());
+  const auto inv = mesh.check_invariants(true);  // source exactly positive, structure sound
+  CHECK_MESSAGE(inv.ok, inv.problem);
+  CHECK(oriented_boundary() == boundary0);
+  CHECK(mesh.num_vertices() == nv0 + r.vertices_added);
+  for (std::uint32_t v = 0; v < nv0; ++v) {
+    const volmap::VertexId id(v);
+    REQUIRE(mesh.vertex_is_live(id));
+    for (int i = 0; i < 3; ++i) CHECK(mesh.vertex_position(id)[i] == positions0[3 * v + i]);
+    CHECK(locked[id] == bnd[v]);
+    CHECK(weight[id] == 0.5 * v);
+    if (bnd[v])
+      for (int i = 0; i < 3; ++i) CHECK(target[id][i] == target0[3 * v + i]);
+  }
+  for (std::uint32_t v = std::uint32_t(nv0); v < mesh.num_vertex_slots(); ++v) {
+    CHECK(locked[volmap::VertexId(v)] == 0);
+    CHECK(weight[volmap::VertexId(v)] == -1.0);
+  }
+  std::size_t replaced = 0;
+  for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    const volmap::TetId id(t);
+    if (!mesh.tet_is_live(id)) continue;
+    CHECK(tag[id] >= 0);
+    CHECK(mesh.tet_labels()[t] == 1000 + tag[id]);
+    const auto v = mesh.tet_vertices(id);
+    CHECK(volmap::orient3d(target[v[0]].data(), target[v[1]].data(), target[v[2]].data(), target[v[3]].data()) > 0);
+    bool same = t < data.num_tets();
+    for (int i = 0; i < 4 && same; ++i) same = v[i].idx() == data.tets[4 * t + i];
+    if (same) CHECK(tag[id] == int(t));  // untouched tets keep their slot, vertices and values
+    replaced += !same;
+  }
+  CHECK(replaced > 0);
 }
 
 // An impossible case even with refinement: the boundary map mirrors the unit cube (x -> 1 - x).

@@ -4,7 +4,7 @@
 // was. Oracle: a tet with subnormal coordinates (orient3d = 2^-3180 > 0 exactly; under DAZ every
 // double evaluation sees 0) and the exact predicates in the default environment. x86-64 only.
 #include <doctest/doctest.h>
-#include <volmap/volume/cone_repair.hpp>
+#include <volmap/volume/kernel_lp.hpp>
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/core/tet_mesh.hpp>

@@ -1,8 +1,11 @@
-// Strict-kernel LP (B1 of mapping.md §7) and the link-kernel relocation pre-step.
+// Strict-kernel LP (B1 of mapping.md §7), the link-kernel relocation pre-step and the kernel descent (§10).
 #include <doctest/doctest.h>
 
 #include <volmap/core/local_tables.hpp>
-#include <volmap/volume/cone_repair.hpp>
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/volume/kernel_descent.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/link_kernel.hpp>
 #include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
@@ -34,11 +37,31 @@ TEST_CASE("link-kernel relocation repairs a vertex pushed out of its star, never
   X[3 * 13] = 1.7;
   const auto before = volmap::count_nonpositive(X, m.tets);
   REQUIRE(before > 0);
-  auto r = volmap::relocate_into_link_kernels(m.tets, bnd, X, 5);
+  auto r = volmap::relocate_into_link_kernels(volmap::TetMesh(m), bnd, X, 5);
   CHECK(r.nonpositive_before == before);
   CHECK(r.nonpositive_after == 0);
   CHECK(volmap::count_nonpositive(X, m.tets) == 0);
   for (std::size_t v = 0; v < bnd.size(); ++v)
     if (bnd[v])
       for (int i = 0; i < 3; ++i) CHECK(X[3 * v + i] == m.xyz[3 * v + i]);
+}
+
+TEST_CASE("kernel descent: a vertex pushed out of its star comes back; bad tets with empty kernels never get worse") {
+  auto m = map_test::kuhn_grid(3);
+  auto bnd = map_test::grid_boundary_flags(3);
+  std::size_t improved = 0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    auto X = map_test::scrambled_target(m, bnd, seed, 0.6);
+    const auto X0 = X;
+    const auto before = volmap::count_nonpositive(X, m.tets);
+    auto r = volmap::descend_into_link_kernels(volmap::TetMesh(m), bnd, X);
+    CHECK(r.nonpositive_before == before);
+    CHECK(r.nonpositive_after == volmap::count_nonpositive(X, m.tets));
+    CHECK(r.nonpositive_after <= before);
+    improved += r.nonpositive_after < before;
+    for (std::size_t v = 0; v < bnd.size(); ++v)
+      if (bnd[v])
+        for (int i = 0; i < 3; ++i) CHECK(X[3 * v + i] == X0[3 * v + i]);
+  }
+  CHECK(improved >= 10);
 }

@@ -28,16 +28,6 @@
 
 namespace {
 
-volmap::BoundaryMap map_of(const std::vector<std::uint8_t>& bnd, const std::vector<double>& target) {
-  volmap::BoundaryMap m;
-  for (std::size_t v = 0; v < bnd.size(); ++v)
-    if (bnd[v]) {
-      m.vids.push_back(std::uint32_t(v));
-      for (int i = 0; i < 3; ++i) m.xyz.push_back(target[3 * v + i]);
-    }
-  return m;
-}
-
 std::filesystem::path temp_dir(const std::string& name) {
   auto d = std::filesystem::temp_directory_path() / ("volmap_test_map_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
@@ -155,7 +145,7 @@ TEST_CASE("pipeline: scrambled grid interior, affine boundary -> certified, boun
     target[3 * v + 1] = m.xyz[3 * v + 1];
     target[3 * v + 2] = 0.5 * m.xyz[3 * v + 2];
   }
-  const auto map = map_of(bnd, target);
+  const auto map = map_test::boundary_map_of(bnd, target);
   for (auto method : {volmap::MapMethod::Ffm, volmap::MapMethod::Tlc}) {
     volmap::VolumeMapOptions opt;
     opt.method = method;
@@ -194,7 +184,7 @@ TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, th
   auto tutte = img.xyz;
   volmap::solve_uniform_laplacian(bnd.size(), volmap::unique_tet_edges(src), bnd, tutte);
   CHECK(volmap::count_nonpositive(tutte, src.tets) > 0);  // the counterexample: uniform Tutte folds
-  const auto map = map_of(bnd, img.xyz);
+  const auto map = map_test::boundary_map_of(bnd, img.xyz);
   volmap::VolumeMapOptions opt;
   opt.allow_refinement = false;
   auto r = volmap::compute_volume_map(src, map, opt);
@@ -230,7 +220,7 @@ TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the 
   auto f = volmap::analyze_feasibility(m, bnd, init);
   CHECK(f.chord_edges.size() == 24);
   CHECK(f.chord_faces.size() == 66);
-  const auto map = map_of(bnd, init);
+  const auto map = map_test::boundary_map_of(bnd, init);
   // Fixed connectivity: must never claim success unless the exact check passes.
   volmap::VolumeMapOptions fixed;
   fixed.allow_refinement = false;
@@ -259,7 +249,7 @@ TEST_CASE("volmap-map: no false success when a fixed all-boundary tet is inverte
   t[3 * 7 + 2] = 0.0;  // flatten: some all-boundary tets become degenerate/inverted, nothing can move
   const auto dir = temp_dir("nfs");
   volmap::write_medit((dir / "in.mesh").string(), m);
-  volmap::write_boundary_map((dir / "map.txt").string(), map_of(bnd, t));
+  volmap::write_boundary_map((dir / "map.txt").string(), map_test::boundary_map_of(bnd, t));
   const std::string base = tool.string() + " " + (dir / "in.mesh").string() + " " + (dir / "map.txt").string() + " " +
                            (dir / "out.mesh").string();
   int rc = std::system((base + " --no-refine > /dev/null 2>&1").c_str());
@@ -272,7 +262,7 @@ TEST_CASE("volmap-map: no false success when a fixed all-boundary tet is inverte
   auto g = map_test::kuhn_grid(3);
   auto gb = map_test::grid_boundary_flags(3);
   volmap::write_medit((dir / "g.mesh").string(), g);
-  volmap::write_boundary_map((dir / "gmap.txt").string(), map_of(gb, g.xyz));
+  volmap::write_boundary_map((dir / "gmap.txt").string(), map_test::boundary_map_of(gb, g.xyz));
   rc = std::system((tool.string() + " " + (dir / "g.mesh").string() + " " + (dir / "gmap.txt").string() + " " +
                     (dir / "gout.mesh").string() + " > /dev/null 2>&1").c_str());
   CHECK(WEXITSTATUS(rc) == 0);

@@ -9,6 +9,8 @@
 #include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
 #include <volmap/volume/tutte3d.hpp>
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/testing/generate.hpp>
 
 #include "test_support.hpp"
 #include "vmap_test_util.hpp"
@@ -133,6 +135,15 @@ TEST_CASE("unique_tet_edges: sorted unique pairs; errors on bad ids") {
   bad = m;
   bad.tets[1] = bad.tets[0];
   CHECK_THROWS_AS(unique_tet_edges(bad), Error);
+}
+
+TEST_CASE("unique_tet_edges of a TetMesh (its edge cache) equals the list from the flat arrays, also after edits") {
+  TetMesh mesh(generate_kuhn_grid(3, 2, 2));
+  CHECK(unique_tet_edges(mesh) == unique_tet_edges(mesh.to_data()));
+  const double p[3] = {0.5, 0.0, 0.0};  // grid vertices 0 and 1 are (0,0,0) and (1,0,0)
+  mesh.split_edge(VertexId(0), VertexId(1), p);
+  CHECK(mesh.num_vertices() == 4 * 3 * 3 + 1);
+  CHECK(unique_tet_edges(mesh) == unique_tet_edges(mesh.to_data()));
 }
 
 TEST_CASE("tutte3d: single interior vertex goes to the mean of its 4 neighbours; boundary kept bit-exact") {

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/volume_map.hpp>
 #include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
@@ -94,4 +95,43 @@ TEST_CASE("FFM untangles scrambled interior vertices and the exact check certifi
     CHECK(volmap::count_nonpositive(target, m.tets) == 0);
     CHECK(q.energy_after <= q.energy_before);
   }
+}
+
+// A source mesh squashed to 1e-10 of its height: every tet exactly positive, none invertible as a
+// rest shape in double precision (relative volume ~1e-10). Issue: the quality pass (FFM rest shape)
+// used to reject such a source as "degenerate or inverted" and fail the whole map as bad input.
+namespace {
+volmap::TetMeshData squashed_grid(int n, double height) {
+  auto m = map_test::kuhn_grid(n);
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) m.xyz[3 * v + 2] *= height;
+  return m;
+}
+}  // namespace
+
+TEST_CASE("FFM rest shape: exactly positive slivers take the regular reference instead of failing") {
+  const auto flat = squashed_grid(3, 1e-10);
+  REQUIRE(volmap::count_nonpositive(flat.xyz, flat.tets) == 0);  // premise: a valid source mesh
+  const auto bnd = map_test::grid_boundary_flags(3);
+  const auto cube = map_test::kuhn_grid(3);  // target: the unit cube itself
+  const volmap::FfmEnergy squashed(flat.xyz, flat.tets, bnd, cube.xyz, volmap::ReferenceShape::RestShape);
+  CHECK(squashed.unusable_rest_shapes() == flat.num_tets());
+  const volmap::FfmEnergy normal(cube.xyz, cube.tets, bnd, cube.xyz, volmap::ReferenceShape::RestShape);
+  CHECK(normal.unusable_rest_shapes() == 0u);
+  // Energy finite with the stand-in reference.
+  const auto vars = squashed.initial_variables();
+  CHECK(std::isfinite(squashed.evaluate(vars.data(), 1e-3, nullptr)));
+}
+
+TEST_CASE("mapper: a valid but flat source is mapped and certified, never reported as bad input") {
+  const auto flat = squashed_grid(3, 1e-10);
+  const auto bnd = map_test::grid_boundary_flags(3);
+  const auto cube = map_test::kuhn_grid(3);
+  const auto map = map_test::boundary_map_of(bnd, cube.xyz);
+  volmap::VolumeMapOptions opt;  // default cascade, quality pass on (rest shape)
+  const auto r = volmap::compute_volume_map(flat, map, opt);
+  CHECK(r.certified);
+  CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
+  bool quality_ran = false;
+  for (const auto& s : r.stages) quality_ran |= s.name == "quality" && s.failure.empty();
+  CHECK(quality_ran);
 }

@@ -90,7 +90,7 @@ TEST_CASE("local FFM fixes one displaced vertex and moves nothing outside its re
   const auto before = target;
   volmap::LocalUntangleOptions lo;
   lo.rings = 1;
-  auto r = volmap::ffm_local_untangle(m.xyz, m.tets, bnd, target, lo);
+  auto r = volmap::ffm_local_untangle(volmap::TetMesh(m), bnd, target, lo);
   CHECK(r.nonpositive_before == bad_before);
   CHECK(r.nonpositive_after == 0);
   CHECK(volmap::count_nonpositive(target, m.tets) == 0);

@@ -307,19 +307,23 @@ std::size_t TetMesh::cache_bytes() const {
 
 // ---- edits ----------------------------------------------------------------------------------
 
-std::uint32_t TetMesh::allocate_tet(std::uint32_t parent) {
-  std::uint32_t t;
+std::uint32_t TetMesh::take_tet_slot() {
   if (!free_tets_.empty()) {
-    t = free_tets_.back();
+    const std::uint32_t t = free_tets_.back();
     free_tets_.pop_back();
-    if (!tet_labels_.empty()) tet_labels_[t] = parent != kNone ? tet_labels_[parent] : 0;
-  } else {
-    t = std::uint32_t(num_tet_slots());
-    if (t >= (std::uint32_t(1) << 30)) failed("tet id space exhausted (2^30 tets)");
-    tv_.insert(tv_.end(), 4, kNone);
-    opp_.insert(opp_.end(), 4, kBoundary);
-    if (!tet_labels_.empty()) tet_labels_.push_back(parent != kNone ? tet_labels_[parent] : 0);
+    return t;
   }
+  const std::uint32_t t = std::uint32_t(num_tet_slots());
+  if (t >= (std::uint32_t(1) << 30)) failed("tet id space exhausted (2^30 tets)");
+  tv_.insert(tv_.end(), 4, kNone);
+  opp_.insert(opp_.end(), 4, kBoundary);
+  if (!tet_labels_.empty()) tet_labels_.push_back(0);
+  return t;
+}
+
+std::uint32_t TetMesh::allocate_tet(std::uint32_t parent) {
+  const std::uint32_t t = take_tet_slot();
+  if (!tet_labels_.empty()) tet_labels_[t] = parent != kNone ? tet_labels_[parent] : 0;
   properties_->notify_add(ElementKind::Tet, t, parent);
   ++num_live_tets_;
   return t;

@@ -19,6 +19,7 @@
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/core/properties.hpp>
 #include <volmap/core/tet_mesh.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/core/topology.hpp>
 
 #include <volmap/io/atomic_file.hpp>
@@ -38,6 +39,7 @@
 #include <volmap/surface/boundary_surface.hpp>
 #include <volmap/surface/domain.hpp>
 #include <volmap/surface/map_extension.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/surface/surface_map.hpp>
 #include <volmap/surface/surface_map_check.hpp>
 
@@ -45,6 +47,10 @@
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/link_kernel.hpp>
+#include <volmap/volume/map_stages.hpp>
+#include <volmap/volume/map_state.hpp>
 #include <volmap/volume/tlc.hpp>
 #include <volmap/volume/tutte3d.hpp>
 #include <volmap/volume/volume_map.hpp>

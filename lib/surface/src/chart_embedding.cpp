@@ -1,6 +1,7 @@
 // Chart flooding and the per-chart embedding (see chart_embedding.hpp). Validity of a chart is
 // decided exactly on the written doubles: every image triangle positive in its face plane
-// (orient2d) and about the centroid of all image points (orient3d), the check's kernel.
+// (orient2d) and about the check's kernel (orient3d): the domain's own kernel point for custom and
+// polycube domains, else the centroid of all image points.
 #include "chart_embedding.hpp"
 
 #include <volmap/core/error.hpp>
@@ -355,10 +356,12 @@ std::vector<double> embed_charts(WorkingSurface& s, const Domain& d, const Embed
     charts.push_back(embedder.build(std::move(chart_faces[c]), face_frame(d, d.faces[chart_face[c]]), chart_face[c]));
     embedder.solve(charts.back());
   }
-  // Valid about the check's kernel, the centroid of all image points (vertex index order = vid
-  // order). Reweighting a chart moves the centroid a little: repeat until no chart changes.
+  // Valid about the check's kernel: the domain's own (custom, polycube) or the centroid of all image
+  // points (vertex index order = vid order). Reweighting a chart moves the centroid a little: repeat
+  // until no chart changes.
   for (int pass = 0;; ++pass) {
-    const Point3 k = compensated_centroid(s.num_vertices(), [&](std::size_t i) { return &img[3 * i]; });
+    const Point3 k = d.has_fixed_kernel() ? d.kernel
+                                          : compensated_centroid(s.num_vertices(), [&](std::size_t i) { return &img[3 * i]; });
     bool all_valid = true;
     for (auto& c : charts)
       if (!embedder.valid(c, k.data())) {

@@ -17,10 +17,10 @@ namespace volmap::surface_detail {
 // Floods the faces between arcs into charts (face property `chart`), matches every chart to the
 // domain face on the left of its arcs and embeds it: Tutte's barycentric embedding in the face plane
 // with the chart boundary on the convex face polygon. When rounding leaves a triangle of a chart
-// not strictly positive in its plane or about the centroid of the image points (the check's
-// kernel; long thin parts of the surface shrink exponentially under Tutte's uniform weights), the
-// chart is re-solved with stretch-reducing positive weights (any positive weights embed a disk on a
-// convex polygon) until it is. Throws Error(Failed) when the charts do not match the domain's faces
+// not strictly positive in its plane or about the check's kernel (the domain's kernel point, or the
+// centroid of the image points for the built-ins; long thin parts of the surface shrink
+// exponentially under Tutte's uniform weights), the chart is re-solved with stretch-reducing
+// positive weights (any positive weights embed a disk on a convex polygon) until it is. Throws Error(Failed) when the charts do not match the domain's faces
 // one to one or a chart stays invalid.
 std::vector<double> embed_charts(WorkingSurface& surface, const Domain& domain, const EmbeddedGraph& graph);
 

@@ -6,6 +6,7 @@
 // neighbour just clockwise of u at v, which keeps the face on the left). Validity is then decided with
 // exact orient3d on the targets.
 #include <volmap/surface/domain.hpp>
+#include <volmap/surface/polycube.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 
@@ -434,6 +435,7 @@ Domain read_custom_domain(const std::string& path) {
 
 Domain domain_from_name_or_file(const std::string& name_or_path) {
   if (is_builtin_domain_name(name_or_path)) return builtin_domain(name_or_path);
+  if (name_or_path.rfind(kPolycubePrefix, 0) == 0) return polycube_domain(name_or_path.substr(kPolycubePrefix.size()));
   return read_custom_domain(name_or_path);
 }
 

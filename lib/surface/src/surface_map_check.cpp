@@ -81,7 +81,7 @@ SurfaceMapCheckResult check_surface_map(std::size_t nv, const std::vector<std::a
   // Kernel point.
   if (options.override_kernel) {
     r.kernel = options.kernel;
-  } else if (domain && domain->kind == DomainKind::Custom) {
+  } else if (domain && domain->has_fixed_kernel()) {
     r.kernel = domain->kernel;
   } else {
     r.kernel = compensated_centroid(bverts.size(), [&](std::size_t i) { return &map.xyz[3 * std::size_t(slot[bverts[i]])]; });

@@ -1,21 +1,55 @@
-// feasibility.cpp — exact pre-checks of docs/mapping.md §3 on flat arrays (sorting, no hashing).
+// feasibility.cpp — exact pre-checks of docs/mapping.md §3 on the source TetMesh (faces and edges from
+// its half-face structure; lists sorted by vertex ids).
 #include <volmap/volume/feasibility.hpp>
 
-#include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 namespace volmap {
 
-FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& on_boundary,
+namespace {
+
+// Are the points others[0..n) (positions by P) within tol of the plane of triangle (p0, p1, p2)?
+// False for a triangle degenerate in double.
+template <class Positions>
+bool within_plane(const double* p0, const double* p1, const double* p2, const std::uint32_t* others, int n, const Positions& P,
+                  double tol) {
+  double e1[3], e2[3], nrm[3];
+  for (int i = 0; i < 3; ++i) {
+    e1[i] = p1[i] - p0[i];
+    e2[i] = p2[i] - p0[i];
+  }
+  nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+  if (!(len > 0)) return false;
+  for (int j = 0; j < n; ++j) {
+    const double* q = P(others[j]);
+    const double d = ((q[0] - p0[0]) * nrm[0] + (q[1] - p0[1]) * nrm[1] + (q[2] - p0[2]) * nrm[2]) / len;
+    if (!(std::abs(d) <= tol)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& locked,
                                       const std::vector<double>& target_xyz) {
-  const std::size_t nv = source.num_vertices(), nt = source.num_tets();
-  if (on_boundary.size() != nv || target_xyz.size() != 3 * nv)
+  return analyze_feasibility(TetMesh(source), locked, target_xyz);
+}
+
+FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<std::uint8_t>& locked,
+                                      const std::vector<double>& target_xyz) {
+  const std::size_t nv = source.num_vertex_slots(), nt = source.num_tet_slots();
+  if (locked.size() != nv || target_xyz.size() != 3 * nv)
     throw Error(ErrorKind::BadInput, "", 0, "feasibility: inconsistent array sizes");
+  if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
+    throw Error(ErrorKind::BadInput, "", 0, "feasibility: the mesh has tombstones (compact it first)");
+  const std::vector<std::uint32_t>& tets = source.tet_vertex_array();
   FeasibilityReport report;
   const double* X = target_xyz.data();
   auto P = [X](std::uint32_t v) { return X + 3 * std::size_t(v); };
@@ -23,7 +57,7 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   // Domain scale from the boundary images.
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (std::size_t v = 0; v < nv; ++v)
-    if (on_boundary[v])
+    if (locked[v])
       for (int i = 0; i < 3; ++i) {
         lo[i] = std::min(lo[i], X[3 * v + i]);
         hi[i] = std::max(hi[i], X[3 * v + i]);
@@ -31,84 +65,52 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
   const double scale = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0});
   const double tol = 1e-6 * scale;
 
-  // Boundary faces and, per boundary vertex, its incident boundary triangles (CSR).
-  const std::vector<std::uint64_t> bfaces = boundary_half_faces(source);
+  // Boundary faces (outward) and the enclosed volume's sign.
+  const Span<HalfFaceId> bfaces = source.boundary_half_faces();
   std::vector<std::array<std::uint32_t, 3>> btri(bfaces.size());
-  for (std::size_t f = 0; f < bfaces.size(); ++f) btri[f] = half_face_vertices(source, bfaces[f]);
+  for (std::size_t f = 0; f < bfaces.size(); ++f) {
+    const auto fv = source.half_face_vertices(bfaces[f]);
+    btri[f] = {fv[0].idx(), fv[1].idx(), fv[2].idx()};
+  }
   static_assert(sizeof(btri[0]) == 3 * sizeof(std::uint32_t), "triangles are read as 3 ids each");
   report.boundary_volume_sign = enclosed_volume_sign(X, nv, btri.empty() ? nullptr : btri[0].data(), btri.size());
-  std::vector<std::uint32_t> tri_offset(nv + 1, 0), tri_list;
-  for (const auto& t : btri)
-    for (auto v : t) ++tri_offset[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) tri_offset[v + 1] += tri_offset[v];
-  tri_list.resize(tri_offset[nv]);
-  {
-    std::vector<std::uint32_t> fill(tri_offset.begin(), tri_offset.end() - 1);
-    for (std::size_t f = 0; f < btri.size(); ++f)
-      for (auto v : btri[f]) tri_list[fill[v]++] = std::uint32_t(f);
-  }
+  std::vector<TetId> star;
   // Are the points `others` (n of them) within tol of the plane of some boundary triangle at `a`?
   auto in_facet_plane_at = [&](std::uint32_t a, const std::uint32_t* others, int n) {
-    for (std::uint32_t k = tri_offset[a]; k < tri_offset[a + 1]; ++k) {
-      const auto& t = btri[tri_list[k]];
-      const double* p0 = P(t[0]);
-      const double* p1 = P(t[1]);
-      const double* p2 = P(t[2]);
-      double e1[3], e2[3], nrm[3];
-      for (int i = 0; i < 3; ++i) {
-        e1[i] = p1[i] - p0[i];
-        e2[i] = p2[i] - p0[i];
+    source.vertex_star(VertexId(a), star);
+    for (TetId t : star)
+      for (int i = 0; i < 4; ++i) {
+        const HalfFaceId h(t, i);
+        if (!source.half_face_is_boundary(h) || source.half_face_apex(h).idx() == a) continue;
+        const auto f = source.half_face_vertices(h);
+        if (within_plane(P(f[0].idx()), P(f[1].idx()), P(f[2].idx()), others, n, P, tol)) return true;
       }
-      nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-      if (!(len > 0)) continue;
-      bool all = true;
-      for (int j = 0; j < n && all; ++j) {
-        const double* q = P(others[j]);
-        const double d = ((q[0] - p0[0]) * nrm[0] + (q[1] - p0[1]) * nrm[1] + (q[2] - p0[2]) * nrm[2]) / len;
-        all = std::abs(d) <= tol;
-      }
-      if (all) return true;
-    }
     return false;
   };
 
-  // Boundary edges (sorted pairs).
-  std::vector<std::array<std::uint32_t, 2>> bedges;
-  bedges.reserve(3 * btri.size());
-  for (const auto& t : btri)
-    for (int i = 0; i < 3; ++i) {
-      std::uint32_t a = t[i], b = t[(i + 1) % 3];
-      if (a > b) std::swap(a, b);
-      bedges.push_back({a, b});
-    }
-  std::sort(bedges.begin(), bedges.end());
-  bedges.erase(std::unique(bedges.begin(), bedges.end()), bedges.end());
-
-  // All edges.
-  std::vector<std::array<std::uint32_t, 2>> edges;
-  edges.reserve(6 * nt);
-  static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  for (std::size_t t = 0; t < nt; ++t) {
-    const std::uint32_t* tv = &source.tets[4 * t];
-    for (const auto& e : kEdge) {
-      std::uint32_t a = tv[e[0]], b = tv[e[1]];
-      if (a > b) std::swap(a, b);
-      edges.push_back({a, b});
-    }
+  // All edges as sorted pairs, each with whether it is on the boundary (its edge star is open).
+  struct Edge {
+    std::array<std::uint32_t, 2> v;
+    bool on_boundary;
+    bool operator<(const Edge& o) const { return v < o.v; }
+  };
+  std::vector<Edge> edges(source.num_edges());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto ends = source.edge_vertices(EdgeId(std::uint32_t(e)));
+    edges[e].v = {std::min(ends[0].idx(), ends[1].idx()), std::max(ends[0].idx(), ends[1].idx())};
+    edges[e].on_boundary = !source.edge_star(EdgeId(std::uint32_t(e)), [](TetId) {});
   }
   std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-
   std::vector<std::uint8_t> has_interior_neighbour(nv, 0), has_neighbour(nv, 0);
-  for (const auto& e : edges) {
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const auto& e = edges[k].v;
+    if (k > 0 && edges[k - 1].v == e) continue;  // a pinched edge: one entry per fan
+    bool on_boundary = false;
+    for (std::size_t j = k; j < edges.size() && edges[j].v == e; ++j) on_boundary = on_boundary || edges[j].on_boundary;
     has_neighbour[e[0]] = has_neighbour[e[1]] = 1;
-    if (!on_boundary[e[1]]) has_interior_neighbour[e[0]] = 1;
-    if (!on_boundary[e[0]]) has_interior_neighbour[e[1]] = 1;
-    if (!on_boundary[e[0]] || !on_boundary[e[1]]) continue;
-    if (std::binary_search(bedges.begin(), bedges.end(), e)) continue;
+    if (!locked[e[1]]) has_interior_neighbour[e[0]] = 1;
+    if (!locked[e[0]]) has_interior_neighbour[e[1]] = 1;
+    if (!locked[e[0]] || !locked[e[1]] || on_boundary) continue;
     report.chord_edges.push_back(e);
     const std::uint32_t other[1] = {e[1]};
     const std::uint32_t other2[1] = {e[0]};
@@ -117,54 +119,47 @@ FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vect
       report.blocking_chord_edges.push_back(e);
   }
   for (std::size_t v = 0; v < nv; ++v)
-    if (!on_boundary[v] && has_neighbour[v] && !has_interior_neighbour[v]) report.fixed_link_vertices.push_back(std::uint32_t(v));
+    if (!locked[v] && has_neighbour[v] && !has_interior_neighbour[v]) report.fixed_link_vertices.push_back(std::uint32_t(v));
 
   // All-boundary tets with a fixed non-positive image.
   for (std::size_t t = 0; t < nt; ++t) {
-    const std::uint32_t* tv = &source.tets[4 * t];
-    if (!(on_boundary[tv[0]] && on_boundary[tv[1]] && on_boundary[tv[2]] && on_boundary[tv[3]])) continue;
+    const std::uint32_t* tv = &tets[4 * t];
+    if (!(locked[tv[0]] && locked[tv[1]] && locked[tv[2]] && locked[tv[3]])) continue;
     ++report.all_boundary_tets;
     if (orient3d(P(tv[0]), P(tv[1]), P(tv[2]), P(tv[3])) <= 0) report.fixed_nonpositive_tets.push_back(std::uint32_t(t));
   }
 
-  // Interior faces with three boundary vertices: (sorted face, tet, local opposite vertex).
-  struct FaceRec {
+  // Interior faces with three boundary vertices, once each (sorted), with the apexes on both sides.
+  struct ChordFace {
     std::array<std::uint32_t, 3> key;
-    std::uint32_t tet;
-    std::uint8_t local;
-    bool operator<(const FaceRec& o) const { return std::tie(key, tet) < std::tie(o.key, o.tet); }
+    std::uint32_t d, e;
+    bool operator<(const ChordFace& o) const { return key < o.key; }
   };
-  std::vector<FaceRec> faces;
-  for (std::size_t t = 0; t < nt; ++t) {
-    const std::uint32_t* tv = &source.tets[4 * t];
-    for (std::uint8_t i = 0; i < 4; ++i) {
-      std::array<std::uint32_t, 3> k = {tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]};
-      if (!(on_boundary[k[0]] && on_boundary[k[1]] && on_boundary[k[2]])) continue;
-      std::sort(k.begin(), k.end());
-      faces.push_back({k, std::uint32_t(t), i});
-    }
+  std::vector<ChordFace> faces;
+  for (std::uint32_t h = 0; h < 4 * nt; ++h) {
+    const HalfFaceId o = source.half_face_opposite(HalfFaceId(h));
+    if (!o.is_valid() || o.idx() < h) continue;
+    const auto fv = source.half_face_vertices(HalfFaceId(h));
+    std::array<std::uint32_t, 3> k = {fv[0].idx(), fv[1].idx(), fv[2].idx()};
+    if (!(locked[k[0]] && locked[k[1]] && locked[k[2]])) continue;
+    std::sort(k.begin(), k.end());
+    faces.push_back({k, source.half_face_apex(HalfFaceId(h)).idx(), source.half_face_apex(o).idx()});
   }
   std::sort(faces.begin(), faces.end());
-  for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
-    if (faces[i].key != faces[i + 1].key) continue;
-    const auto& k = faces[i].key;
+  for (const ChordFace& f : faces) {
+    const auto& k = f.key;
     report.chord_faces.push_back(k);
     bool blocking = collinear(P(k[0]), P(k[1]), P(k[2]));
     if (!blocking) {
       const std::uint32_t others[2] = {k[1], k[2]};
       blocking = in_facet_plane_at(k[0], others, 2);
     }
-    if (!blocking) {
-      const std::uint32_t d = source.tets[4 * std::size_t(faces[i].tet) + faces[i].local];
-      const std::uint32_t e = source.tets[4 * std::size_t(faces[i + 1].tet) + faces[i + 1].local];
-      if (on_boundary[d] && on_boundary[e]) {
-        const int sd = orient3d(P(k[0]), P(k[1]), P(k[2]), P(d));
-        const int se = orient3d(P(k[0]), P(k[1]), P(k[2]), P(e));
-        blocking = sd * se >= 0;
-      }
+    if (!blocking && locked[f.d] && locked[f.e]) {
+      const int sd = orient3d(P(k[0]), P(k[1]), P(k[2]), P(f.d));
+      const int se = orient3d(P(k[0]), P(k[1]), P(k[2]), P(f.e));
+      blocking = sd * se >= 0;
     }
     if (blocking) report.blocking_chord_faces.push_back(k);
-    ++i;
   }
   return report;
 }

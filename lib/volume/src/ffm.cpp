@@ -25,7 +25,6 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -53,7 +52,6 @@ static double ffm_chi_second(double D, double eps) {
 
 namespace {
 
-using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
 using untangle::signed_volume_sum;
@@ -75,6 +73,17 @@ inline bool inverse3(const double* A, double* inv) {
   return true;
 }
 
+// A source tet's edge matrix T is a usable rest shape when det T < 0 (VOLMAP-positive) with a
+// relative volume |det T| / (Σ|edge|²)^{3/2} above 1e-9: flatter tets (exactly positive slivers from
+// refinement, or ones whose double determinant has the wrong sign) make M = T⁻¹ and the energy
+// numerically meaningless, so they take the regular reference instead (docs/mapping.md §5).
+inline bool rest_shape_usable(const double* T) {
+  const double d = det3(T);
+  double sq = 0;
+  for (int k = 0; k < 9; ++k) sq += T[k] * T[k];
+  return std::isfinite(d) && d < 0 && -d > 1e-9 * sq * std::sqrt(sq);
+}
+
 inline void matmul3(const double* A, const double* B, double* C) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
@@ -92,6 +101,7 @@ struct FfmEnergy::Impl {
   double theta = 0.5;
   std::vector<double> M;       // 9 per tet: R⁻¹
   std::vector<double> weight;  // per tet: vol_ref
+  std::size_t unusable_rest_shapes = 0;  // source tets given the regular reference (RestShape only)
   // Work buffers (evaluation is not re-entrant).
   mutable std::vector<double> x;          // 3*nv scaled positions
   mutable std::vector<double> tet_grad;   // 12 per tet
@@ -238,27 +248,32 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
 
   m.M.resize(9 * m.nt);
   m.weight.resize(m.nt);
+  // Mirrored regular tet (1,1,1),(1,−1,−1),(−1,1,−1),(−1,−1,1) of volume vol(D)/T: edge determinant
+  // −16, like VOLMAP tets. The reference of every tet for RegularTet, and the stand-in for a source
+  // tet whose rest shape is unusable in double precision for RestShape.
+  const double mean_volume = domain_volume / double(m.nt);
+  const double side = std::cbrt(6.0 * mean_volume / 16.0);
+  const double regular[9] = {0, -2 * side, -2 * side, -2 * side, 0, -2 * side, -2 * side, -2 * side, 0};
+  double regular_inverse[9];
+  inverse3(regular, regular_inverse);
+  const auto use_regular = [&](std::size_t t) {
+    std::copy(regular_inverse, regular_inverse + 9, &m.M[9 * t]);
+    m.weight[t] = mean_volume;
+  };
   if (reference == ReferenceShape::RegularTet) {
-    // Mirrored regular tet (1,1,1),(1,−1,−1),(−1,1,−1),(−1,−1,1): edge determinant −16, like VOLMAP tets.
-    const double v = domain_volume / double(m.nt);
-    const double s = std::cbrt(6.0 * v / 16.0);
-    const double R[9] = {0, -2 * s, -2 * s, -2 * s, 0, -2 * s, -2 * s, -2 * s, 0};
-    double Minv[9];
-    inverse3(R, Minv);
-    for (std::size_t t = 0; t < m.nt; ++t) {
-      std::copy(Minv, Minv + 9, &m.M[9 * t]);
-      m.weight[t] = v;
-    }
+    for (std::size_t t = 0; t < m.nt; ++t) use_regular(t);
   } else {
     const double c = std::cbrt(domain_volume / source_volume);
     double T[9];
     for (std::size_t t = 0; t < m.nt; ++t) {
       edge_matrix(source_xyz.data(), &tets[4 * t], T);
       for (double& e : T) e *= c;
-      const double d = det3(T);
-      if (!(d < 0) || !inverse3(T, &m.M[9 * t]))
-        throw Error(ErrorKind::BadInput, "", 0, "ffm: source tet " + std::to_string(t) + " is degenerate or inverted (rest shape unusable)");
-      m.weight[t] = -d / 6.0;
+      if (rest_shape_usable(T) && inverse3(T, &m.M[9 * t])) {
+        m.weight[t] = -det3(T) / 6.0;
+      } else {
+        use_regular(t);
+        ++m.unusable_rest_shapes;
+      }
     }
   }
   m.tet_grad.resize(12 * m.nt);
@@ -267,6 +282,8 @@ FfmEnergy::FfmEnergy(const std::vector<double>& source_xyz, const std::vector<st
 }
 
 FfmEnergy::~FfmEnergy() = default;
+
+std::size_t FfmEnergy::unusable_rest_shapes() const { return impl_->unusable_rest_shapes; }
 
 std::size_t FfmEnergy::num_variables() const { return impl_->layout.num_variables(); }
 
@@ -485,7 +502,7 @@ std::size_t count_nonpositive_det(const std::vector<double>& dets) {
 FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                        const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                        const FfmOptions& options) {
-  const auto start = Clock::now();
+  const TimeBudget budget(options.time_limit_seconds);
   FfmResult result;
   FfmEnergy energy(source_xyz, tets, locked, target_xyz, options.reference, options.theta);
   const FfmEnergy::Impl& m = energy.impl();
@@ -496,7 +513,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     result.certified = result.nonpositive == 0;
     result.final_epsilon = eps;
     result.min_det = energy.min_det(x.data());
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.seconds = budget.elapsed();
     return result;
   };
   const std::vector<double> x0 = energy.initial_variables();
@@ -513,7 +530,7 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
     return e;
   };
   obj.stop_when_certified = options.stop_when_certified;
-  obj.set_time_limit(start, options.time_limit_seconds);
+  obj.budget = budget;
   // LBFGSpp keeps a reference to its parameters: they must outlive the solver.
   const LBFGSpp::LBFGSParam<double> param =
       untangle::lbfgs_param(options.max_lbfgs_iterations, options.gradient_tolerance, 0, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_WOLFE);
@@ -572,33 +589,26 @@ FfmResult ffm_untangle(const std::vector<double>& source_xyz, const std::vector<
   return finish(x, eps);
 }
 
-LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
-                                       const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options) {
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const TimeBudget budget(options.time_limit_seconds);
   LocalUntangleResult result;
-  const std::size_t nv = target_xyz.size() / 3, nt = tets.size() / 4;
-  if (source_xyz.size() != target_xyz.size() || locked.size() != nv || tets.size() % 4 != 0)
-    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
+  const std::size_t nv = source.num_vertex_slots(), nt = source.num_tet_slots();
+  if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
+    throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: the mesh has tombstones (compact it first)");
+  if (target_xyz.size() != 3 * nv || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
+  const std::vector<double>& source_xyz = source.positions();
+  const std::vector<std::uint32_t>& tets = source.tet_vertex_array();
   std::vector<std::uint32_t> bad = nonpositive_tets(target_xyz, tets);
   result.nonpositive_before = result.nonpositive_after = bad.size();
   if (bad.empty()) return result;
-  // Vertex → tets CSR.
-  std::vector<std::uint32_t> vt_offset(nv + 1, 0), vt_tets(4 * nt);
-  for (std::uint32_t v : tets) ++vt_offset[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) vt_offset[v + 1] += vt_offset[v];
-  {
-    std::vector<std::uint32_t> fill(vt_offset.begin(), vt_offset.end() - 1);
-    for (std::size_t s = 0; s < 4 * nt; ++s) vt_tets[fill[tets[s]]++] = std::uint32_t(s / 4);
-  }
   int rings = options.rings;
   bool other_reference_tried = false;
   ReferenceShape reference = options.reference;
   std::vector<std::uint8_t> in_region(nv), tet_in(nt);
   std::vector<std::uint32_t> frontier, next, local_id(nv, std::uint32_t(-1));
   for (int round = 0; round < options.max_rounds && !bad.empty(); ++round) {
-    if (options.time_limit_seconds > 0 && elapsed() >= options.time_limit_seconds) break;
+    if (budget.expired()) break;
     result.rounds = round + 1;
     std::fill(in_region.begin(), in_region.end(), 0);
     frontier.clear();
@@ -613,9 +623,9 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     for (int r = 0; r < rings; ++r) {
       next.clear();
       for (std::uint32_t v : frontier)
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k)
+        for (TetId t : source.vertex_tets(VertexId(v)))
           for (int j = 0; j < 4; ++j) {
-            const std::uint32_t u = tets[4 * std::size_t(vt_tets[k]) + j];
+            const std::uint32_t u = source.tet_vertex(t, j).idx();
             if (!in_region[u]) {
               in_region[u] = 1;
               next.push_back(u);
@@ -628,7 +638,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     std::vector<std::uint32_t> sub_tets, sub_vertices;
     for (std::size_t v = 0; v < nv; ++v)
       if (in_region[v] && !locked[v])
-        for (std::uint32_t k = vt_offset[v]; k < vt_offset[v + 1]; ++k) tet_in[vt_tets[k]] = 1;
+        for (TetId t : source.vertex_tets(VertexId(std::uint32_t(v)))) tet_in[t.idx()] = 1;
     for (std::size_t t = 0; t < nt; ++t) {
       if (!tet_in[t]) continue;
       for (int k = 0; k < 4; ++k) {
@@ -661,7 +671,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
       fo.solver = FfmSolver::Newton;
       fo.stall_outer_iterations = options.stall_outer_iterations;
       fo.initial_epsilon = 0;  // warm start: the map is nearly valid
-      if (options.time_limit_seconds > 0) fo.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - elapsed());
+      fo.time_limit_seconds = budget.option_seconds();
       try {
         ffm_untangle(sub_source, sub_tets, sub_locked, trial, fo);
         sub_after = count_nonpositive(trial, sub_tets);
@@ -687,7 +697,7 @@ LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, co
     bad = nonpositive_tets(target_xyz, tets);
   }
   result.nonpositive_after = bad.size();
-  result.seconds = elapsed();
+  result.seconds = budget.elapsed();
   return result;
 }
 
@@ -709,7 +719,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   };
   obj.barrier = true;
   obj.stop_when_certified = false;
-  obj.set_time_limit(Clock::now(), time_limit_seconds);
+  obj.budget = TimeBudget(time_limit_seconds);
   const std::vector<double> x0 = energy.initial_variables();
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), Eigen::Index(x0.size()));
   result.energy_before = energy.evaluate(x.data(), eps, nullptr);

@@ -14,14 +14,12 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace volmap {
 
 namespace {
-using untangle::Clock;
 using untangle::det3;
 using untangle::edge_matrix;
 using untangle::signed_volume_sum;
@@ -109,7 +107,7 @@ double tlc_lifted_content(const double* T, const double* a_rest_gram, double* dT
 TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                        const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                        const TlcOptions& options) {
-  const auto start = Clock::now();
+  const TimeBudget budget(options.time_limit_seconds);
   TlcResult result;
   TlcProblem p(tets);
   const std::size_t nv = target_xyz.size() / 3;
@@ -120,7 +118,7 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
     result.nonpositive = count_nonpositive(target_xyz, tets);
     result.certified = result.nonpositive == 0;
     result.evaluations = obj.evaluations;
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.seconds = budget.elapsed();
     return result;
   };
   if (count_nonpositive(target_xyz, tets) == 0) return finish();
@@ -162,7 +160,7 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   obj.frame = &p.frame;
   obj.tets = &tets;
   obj.candidate = &candidate;
-  obj.set_time_limit(start, options.time_limit_seconds);
+  obj.budget = budget;
   Eigen::VectorXd vars(Eigen::Index(p.layout.num_variables()));
   p.layout.extract(p.x.data(), vars.data());
   LBFGSpp::LBFGSParam<double> param = untangle::lbfgs_param(1, 1e-8, options.ftol, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE);

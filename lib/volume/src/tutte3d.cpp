@@ -4,6 +4,7 @@
 // L_II is assembled directly in compressed-column form (lower triangle): free vertices are numbered
 // in increasing vertex id, so the sorted edge list (a<b) yields each column's rows already sorted.
 #include <volmap/core/error.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/volume/tutte3d.hpp>
 
 #include <Eigen/Sparse>
@@ -13,18 +14,25 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <string>
+#include <utility>
 
 namespace volmap {
-namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
+std::vector<std::uint32_t> unique_tet_edges(const TetMesh& mesh) {
+  const Span<VertexId> ev = mesh.edge_vertex_array();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(ev.size() / 2);
+  for (std::size_t e = 0; e < pairs.size(); ++e) pairs[e] = std::minmax(ev[2 * e].idx(), ev[2 * e + 1].idx());
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());  // a pinched edge has one id per fan
+  std::vector<std::uint32_t> out;
+  out.reserve(2 * pairs.size());
+  for (const auto& [a, b] : pairs) {
+    out.push_back(a);
+    out.push_back(b);
+  }
+  return out;
 }
-
-}  // namespace
 
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
   // Counting sort of the 6 edges per tet by their smaller endpoint a, then a small sort + unique of
@@ -85,20 +93,20 @@ std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh) {
 }
 
 Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vector<std::uint32_t>& edges,
-                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz,
+                                       const std::vector<std::uint8_t>& locked, std::vector<double>& xyz,
                                        SparseFactorization factorization) {
-  if (fixed.size() != num_vertices || xyz.size() != 3 * num_vertices || edges.size() % 2 != 0) {
-    throw_bad_input("", 0, "solve_uniform_laplacian: size mismatch (fixed mask, positions or edge list)");
+  if (locked.size() != num_vertices || xyz.size() != 3 * num_vertices || edges.size() % 2 != 0) {
+    throw_bad_input("", 0, "solve_uniform_laplacian: size mismatch (locked mask, positions or edge list)");
   }
   Tutte3dTimings timings;
-  auto start = Clock::now();
+  TimeBudget phase;  // a stopwatch (no limit)
 
-  // Free vertices numbered in increasing id: column[v] (or -1 when fixed).
+  // Free vertices numbered in increasing id: column[v] (or -1 when locked).
   constexpr std::int32_t kFixed = -1;
   std::vector<std::int32_t> column(num_vertices, kFixed);
   std::int32_t num_free = 0;
   for (std::size_t v = 0; v < num_vertices; ++v) {
-    if (!fixed[v]) column[v] = num_free++;
+    if (!locked[v]) column[v] = num_free++;
   }
   if (num_free == 0) return timings;
 
@@ -155,17 +163,17 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
     values[cursor[ca]] = -1.0;
     ++cursor[ca];
   }
-  timings.assembly = seconds_since(start);
+  timings.assembly = phase.elapsed();
 
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  const char* singular = "uniform Laplacian is singular: a group of free vertices has no path to a fixed vertex";
+  const char* singular = "uniform Laplacian is singular: a group of free vertices has no path to a locked vertex";
   Eigen::MatrixX3d solution;
-  // SPD check: every pivot must be clearly positive (a free component without a fixed vertex makes
+  // SPD check: every pivot must be clearly positive (a free component without a locked vertex makes
   // the Laplacian singular: a pivot ~0, or a failed factorisation).
   constexpr double kMinPivot = 1e-12;
   if (factorization == SparseFactorization::LLT) {
     Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
-    start = Clock::now();
+    phase = TimeBudget();
     solver.analyzePattern(matrix);
     solver.factorize(matrix);
     bool ok = solver.info() == Eigen::Success;
@@ -178,32 +186,32 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
       }
     }
     if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
-    timings.factorization = seconds_since(start);
-    start = Clock::now();
+    timings.factorization = phase.elapsed();
+    phase = TimeBudget();
     solution = solver.solve(rhs);
   } else if (factorization == SparseFactorization::ConjugateGradient) {
     Eigen::ConjugateGradient<Matrix, Eigen::Lower, Eigen::DiagonalPreconditioner<double>> solver;
-    start = Clock::now();
+    phase = TimeBudget();
     solver.setTolerance(1e-12);
     solver.setMaxIterations(std::max<Eigen::Index>(1000, 10 * static_cast<Eigen::Index>(num_free)));
     solver.compute(matrix);
-    timings.factorization = seconds_since(start);
-    start = Clock::now();
+    timings.factorization = phase.elapsed();
+    phase = TimeBudget();
     solution = solver.solve(rhs);
     if (solver.info() != Eigen::Success) {
       throw Error(ErrorKind::Failed, "", 0, "conjugate gradient did not converge (singular Laplacian?)");
     }
   } else {
     Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
-    start = Clock::now();
+    phase = TimeBudget();
     solver.analyzePattern(matrix);
     solver.factorize(matrix);
     bool ok = solver.info() == Eigen::Success;
     const auto d = solver.vectorD();
     for (Eigen::Index i = 0; ok && i < d.size(); ++i) ok = d[i] > kMinPivot;
     if (!ok) throw Error(ErrorKind::Failed, "", 0, singular);
-    timings.factorization = seconds_since(start);
-    start = Clock::now();
+    timings.factorization = phase.elapsed();
+    phase = TimeBudget();
     solution = solver.solve(rhs);
   }
   for (std::size_t v = 0; v < num_vertices; ++v) {
@@ -213,7 +221,7 @@ Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vect
     xyz[3 * v + 1] = solution(c, 1);
     xyz[3 * v + 2] = solution(c, 2);
   }
-  timings.solve = seconds_since(start);
+  timings.solve = phase.elapsed();
   return timings;
 }
 
@@ -225,12 +233,12 @@ Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tut
   if (map.xyz.size() != 3 * map.vids.size()) throw_bad_input("", 0, "tutte3d: malformed boundary map arrays");
 
   Tutte3dResult result;
-  auto start = Clock::now();
+  TimeBudget phase;  // a stopwatch (no limit)
   const std::vector<std::uint32_t> edges = unique_tet_edges(mesh);
-  result.timings.edges = seconds_since(start);
+  result.timings.edges = phase.elapsed();
   result.num_edges = edges.size() / 2;
 
-  std::vector<std::uint8_t> fixed(nv, 0);
+  std::vector<std::uint8_t> locked(nv, 0);
   result.xyz.assign(3 * nv, 0.0);
   for (std::size_t k = 0; k < map.vids.size(); ++k) {
     const std::uint32_t v = map.vids[k];
@@ -238,14 +246,14 @@ Tutte3dResult tutte3d(const TetMeshData& mesh, const BoundaryMap& map, const Tut
       throw_bad_input("", 0, "boundary map vertex id " + std::to_string(v) + " is out of range (mesh has " +
                                  std::to_string(nv) + " vertices)");
     }
-    if (fixed[v]) throw_bad_input("", 0, "boundary map lists vertex id " + std::to_string(v) + " twice");
-    fixed[v] = 1;
+    if (locked[v]) throw_bad_input("", 0, "boundary map lists vertex id " + std::to_string(v) + " twice");
+    locked[v] = 1;
     for (int i = 0; i < 3; ++i) result.xyz[3 * v + i] = map.xyz[3 * k + i];
   }
   result.num_fixed = map.vids.size();
   result.num_free = nv - result.num_fixed;
 
-  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, fixed, result.xyz, options.factorization);
+  const Tutte3dTimings solve_timings = solve_uniform_laplacian(nv, edges, locked, result.xyz, options.factorization);
   result.timings.assembly = solve_timings.assembly;
   result.timings.factorization = solve_timings.factorization;
   result.timings.solve = solve_timings.solve;

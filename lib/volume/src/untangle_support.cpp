@@ -102,11 +102,6 @@ LBFGSpp::LBFGSParam<double> lbfgs_param(int max_iterations, double gtol, double 
   return p;
 }
 
-void GuardedObjective::set_time_limit(Clock::time_point start, double seconds) {
-  has_deadline = seconds > 0;
-  if (has_deadline) deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
-}
-
 bool GuardedObjective::exactly_certified(const double* vars) {
   frame->write_back(*layout, vars, *candidate);
   return count_nonpositive(*candidate, *tets) == 0;

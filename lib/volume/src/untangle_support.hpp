@@ -1,5 +1,5 @@
 // untangle_support.hpp — machinery shared by the per-tet untanglers (FFM in ffm.cpp, TLC in tlc.cpp):
-// the exact non-positive count, edge matrices, the free-variable layout (3 doubles per unlocked vertex,
+// edge matrices, the free-variable layout (3 doubles per unlocked vertex,
 // in increasing vertex id) with its CSR gather of per-tet gradients, the box-of-side-10 frame of
 // mapping.md §5, and the L-BFGS objective guard (time limit + exact stop).
 // Conventions: flat xyz arrays (3 doubles per vertex), tets as 4 0-based ids; edge matrices row-major,
@@ -7,18 +7,17 @@
 // has det T < 0. Internal header (lib/src): not part of the public API.
 #pragma once
 
+#include <volmap/core/time_budget.hpp>
+
 #include <Eigen/Core>
 #include <LBFGS.h>
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 namespace volmap::untangle {
-
-using Clock = std::chrono::steady_clock;
 
 // The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
 // input sanity); they never certify: validity is the exact volmap::count_nonpositive.
@@ -97,15 +96,13 @@ struct GuardedObjective {
   std::vector<double>* candidate = nullptr;  // unscaled full coordinates (locked vertices exact)
   bool stop_when_certified = true;
   bool barrier = false;
-  bool has_deadline = false;
-  Clock::time_point deadline;
+  TimeBudget budget;  // unlimited unless set
   long evaluations = 0;
   long next_exact_check = 0;
   int check_period = 10;
   Eigen::VectorXd last_x;
 
-  void set_time_limit(Clock::time_point start, double seconds);
-  bool past_deadline() const { return has_deadline && Clock::now() > deadline; }
+  bool past_deadline() const { return budget.expired(); }
   // Writes vars into the candidate and returns true when its exact count is 0.
   bool exactly_certified(const double* vars);
   double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad);

@@ -9,6 +9,9 @@
 
 #include <boost/multiprecision/gmp.hpp>
 
+#include <array>
+#include <vector>
+
 namespace volmap {
 
 // Exact rational number (GMP backend, expression templates off: safe to store in auto).
@@ -25,5 +28,19 @@ int insphere(const Rational* a, const Rational* b, const Rational* c, const Rati
 // the conversion error in its bound decides most tets, the rest use homogeneous integer determinants.
 TetSignCounts orient3d_tets(const Rational* xyz, std::size_t num_vertices, const std::uint32_t* tets,
                             std::size_t num_tets, std::int8_t* signs);
+
+// --- strict half-spaces of oriented faces and their Farkas certificates ---------------------------
+// A point x is on the positive side of the outward face (a,b,c) iff orient3d(a,b,c,x) > 0, i.e.
+// n·x > d with n = (c − a) × (b − a) and d = n·a (exactly, in rationals).
+struct StrictHalfspace {
+  std::array<Rational, 3> n;
+  Rational d;
+};
+StrictHalfspace strict_halfspace(const double* a, const double* b, const double* c);
+
+// True iff `multipliers` prove that no point is strictly inside every half-space: λ_j >= 0, not all
+// zero, Σ λ_j n_j = 0 and Σ λ_j d_j >= 0 (Farkas: such λ exist exactly when the strict system has
+// no solution). False for mismatched sizes or an empty system. Decided in exact rationals.
+bool farkas_certifies_empty(const std::vector<StrictHalfspace>& halfspaces, const std::vector<Rational>& multipliers);
 
 }  // namespace volmap

@@ -2,7 +2,8 @@
 // A VertexProperty<T> / TetProperty<T> is a flat std::vector<T> with one entry per vertex / tet
 // SLOT (tombstones included) of one TetMesh. It registers itself with the mesh (RAII): when an edit
 // creates a vertex it gets the property's default value; a tet created by splitting or flipping
-// copies its parent's value; compact() permutes it with the same old->new map as the mesh.
+// copies its parent's value, a tet of a cavity fill the value of the parent the caller named (or the
+// default); compact() permutes it with the same old->new map as the mesh.
 // Copies have plain value semantics (the copy is registered too and follows later edits on its
 // own). Properties hold the mesh's registry, not the mesh: moving the mesh keeps them attached;
 // a property outliving its mesh simply stops receiving updates.
@@ -11,6 +12,7 @@
 #include <volmap/core/tet_mesh.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -25,6 +27,9 @@ class PropertyArrayBase {
   virtual ~PropertyArrayBase() = default;
   // Slot `slot` now holds a new element: default value, or a copy of slot `parent` when valid.
   virtual void on_add(std::uint32_t slot, std::uint32_t parent) = 0;
+  // Slots slots[k] now hold new elements: each takes the value slot parents[k] held BEFORE this call
+  // (default when kInvalidIndex), so a slot may be both a parent and a destination.
+  virtual void on_assign(const std::uint32_t* slots, const std::uint32_t* parents, std::size_t n) = 0;
   // compact(): element old -> old_to_new[old] (kInvalidIndex: removed); new size new_size.
   virtual void on_compact(const std::vector<std::uint32_t>& old_to_new, std::size_t new_size) = 0;
 };
@@ -39,6 +44,9 @@ class PropertyRegistry {
   }
   void notify_add(ElementKind kind, std::uint32_t slot, std::uint32_t parent) {
     for (PropertyArrayBase* p : list(kind)) p->on_add(slot, parent);
+  }
+  void notify_assign(ElementKind kind, const std::uint32_t* slots, const std::uint32_t* parents, std::size_t n) {
+    for (PropertyArrayBase* p : list(kind)) p->on_assign(slots, parents, n);
   }
   void notify_compact(ElementKind kind, const std::vector<std::uint32_t>& old_to_new, std::size_t new_size) {
     for (PropertyArrayBase* p : list(kind)) p->on_compact(old_to_new, new_size);
@@ -91,6 +99,16 @@ class MeshProperty final : public PropertyArrayBase {
     if (slot >= data_.size()) data_.resize(std::size_t(slot) + 1, default_);
     data_[slot] = std::move(value);
   }
+  void on_assign(const std::uint32_t* slots, const std::uint32_t* parents, std::size_t n) override {
+    std::vector<T> values;
+    values.reserve(n);
+    for (std::size_t k = 0; k < n; ++k)
+      values.push_back((parents[k] != kInvalidIndex && parents[k] < data_.size()) ? T(data_[parents[k]]) : default_);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (slots[k] >= data_.size()) data_.resize(std::size_t(slots[k]) + 1, default_);
+      data_[slots[k]] = std::move(values[k]);
+    }
+  }
   void on_compact(const std::vector<std::uint32_t>& old_to_new, std::size_t new_size) override {
     std::vector<T> next(new_size, default_);
     const std::size_t n = std::min(old_to_new.size(), data_.size());
@@ -109,5 +127,9 @@ template <class T>
 using VertexProperty = MeshProperty<T, ElementKind::Vertex, VertexId>;
 template <class T>
 using TetProperty = MeshProperty<T, ElementKind::Tet, TetId>;
+
+// A second coordinate set next to the mesh's own positions (e.g. the target of a map): 3 doubles per
+// vertex slot; new vertices get the default (0,0,0) until the caller places them.
+using PositionProperty = VertexProperty<std::array<double, 3>>;
 
 }  // namespace volmap

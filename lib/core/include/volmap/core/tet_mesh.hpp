@@ -10,7 +10,8 @@
 // - v2h[v] is one half-face containing v, a boundary one whenever v is on the boundary, so
 //   vertex_is_boundary(v) is O(1).
 // - Edits never renumber untouched elements. Deleted tets become tombstones (tv[4t] = kInvalidIndex)
-//   whose slots are reused by later edits; compact() removes tombstones and returns old->new maps.
+//   whose slots are reused by later edits (vertices deleted by replace_cavity likewise: v2h = kInvalidIndex);
+//   compact() removes tombstones and returns old->new maps.
 //   Loop over slots with num_tet_slots() and skip !tet_is_live(t) when tombstones may exist.
 // - Caches (edge ids, vertex->tets CSR, boundary half-face list) are built on demand and tagged with
 //   topology_version(); every topological edit bumps it. Using a cache never changes a result.
@@ -51,6 +52,22 @@ struct Span {
 struct CompactRemap {
   std::vector<std::uint32_t> vertex_old_to_new;
   std::vector<std::uint32_t> tet_old_to_new;
+};
+
+// One tet of a cavity fill (TetMesh::replace_cavity): four vertices, each a live vertex of the
+// cavity or CavityTet::new_vertex(k), the k-th new vertex of the fill; and `parent`, a cavity tet whose
+// label and tet property values the new tet takes (TetId::kInvalid: label 0 and the defaults).
+struct CavityTet {
+  static constexpr std::uint32_t kFirstNewVertex = 0xC0000000u;  // existing vertex ids stay below
+  static constexpr VertexId new_vertex(std::uint32_t k) { return VertexId(kFirstNewVertex + k); }
+  std::array<VertexId, 4> v;
+  TetId parent = TetId::kInvalid;
+};
+
+// What replace_cavity made: the new tets (in the fill's order) and the new vertices (k-th = new_vertex(k)).
+struct CavityReplacement {
+  std::vector<TetId> tets;
+  std::vector<VertexId> vertices;
 };
 
 // Result of check_invariants(): ok, or the first problem found in words.
@@ -217,6 +234,19 @@ class TetMesh {
   // 3-2 flip of the interior edge (local a, local b) of t of degree 3.
   bool can_flip_3_2(TetId t, int a, int b, const double* xyz = nullptr) const;
   std::array<TetId, 2> flip_3_2(TetId t, int a, int b);
+  // Cavity replacement (tet_mesh_cavity.cpp): the live tets `cavity` (normally a topological ball)
+  // are replaced by the tets `fill`, over the cavity's vertices and new ones at `new_positions`
+  // (3 doubles per new vertex, each used by some fill tet). The fill must close onto the cavity: every
+  // face of a fill tet is shared with exactly one other fill tet (opposite winding) or is exactly one
+  // boundary face of the cavity (same winding; it takes over that face's neighbour or its place on
+  // the mesh boundary), and every cavity boundary face is covered so. A fill face inside the cavity
+  // may not already be a face outside it. Fill tet k takes the slot of cavity[k] while there are
+  // cavity slots; the rest take free slots or append; unused cavity slots become tombstones. Cavity
+  // vertices the fill does not use (interior ones) are deleted. Labels and tet properties come from
+  // each fill tet's parent, new vertices get the defaults. Anything else throws Error(Failed) and
+  // leaves the mesh (and its properties) unchanged. Positivity is the caller's business.
+  CavityReplacement replace_cavity(const std::vector<TetId>& cavity, const std::vector<CavityTet>& fill,
+                                   const std::vector<double>& new_positions = {});
   // Removes tombstones; permutes every registered property and the labels. Survivors keep their
   // relative order.
   CompactRemap compact();
@@ -241,6 +271,7 @@ class TetMesh {
   void ensure_vertex_tets_cache() const;
   void ensure_boundary_cache() const;
   std::uint32_t allocate_tet(std::uint32_t parent);
+  std::uint32_t take_tet_slot();  // a free slot or a new one; no label, property or count update
   std::uint32_t allocate_vertex(const double p[3]);
   void free_tet(std::uint32_t t);
   void link(std::uint32_t h, std::uint32_t g) {

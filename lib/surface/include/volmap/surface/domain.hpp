@@ -1,5 +1,5 @@
-// volmap/surface/domain.hpp — base domains of the VOLMAP benchmark (cube, tet, pyr, octa, star) and
-// user-defined (custom) polyhedral domains read from a file.
+// volmap/surface/domain.hpp — base domains of the VOLMAP benchmark (cube, tet, pyr, octa, star),
+// user-defined (custom) polyhedral domains read from a file, and polycubes (<volmap/surface/polycube.hpp>).
 //
 // Conventions (see volmap-reference.md §3):
 //  - Nodes are 0-based; every node has a target point (its position on the domain). Nodes of the
@@ -23,7 +23,7 @@ namespace volmap {
 
 using Point3 = std::array<double, 3>;
 
-enum class DomainKind { Cube, Tet, Pyramid, Octahedron, Star, Custom };
+enum class DomainKind { Cube, Tet, Pyramid, Octahedron, Star, Custom, Polycube };
 
 struct DomainArc {
   int from = -1;
@@ -61,6 +61,9 @@ struct Domain {
   double size = 0;                              // diagonal of the targets' bounding box
 
   std::size_t num_nodes() const { return targets.size(); }
+  // Custom and polycube domains are judged about their own kernel point; the built-ins about the
+  // centroid of the image points (VOLMAP's criterion).
+  bool has_fixed_kernel() const { return kind == DomainKind::Custom || kind == DomainKind::Polycube; }
   bool has_probe(int node) const;
   // The probe of `node` for the input bbox [bmin,bmax]. Precondition: has_probe(node).
   Point3 probe(int node, const Point3& bmin, const Point3& bmax) const;
@@ -87,7 +90,8 @@ Domain read_custom_domain(const std::string& path);
 // Same from text (`source_name` is used in error messages).
 Domain parse_custom_domain(const std::string& text, const std::string& source_name);
 
-// A built-in name or a custom domain file path.
+// A built-in name, `polycube:<cells file or built-in polycube name>` (cell size 100, see
+// polycube.hpp) or a custom domain file path.
 Domain domain_from_name_or_file(const std::string& name_or_path);
 
 // Derives kernel-relative rotations, faces and size, then validates (shared by built-ins and custom

@@ -4,8 +4,8 @@
 // For every boundary triangle (u,v,w) of the tet mesh, in the outward winding of its tet
 // (F0=(1,3,2) F1=(0,2,3) F2=(0,3,1) F3=(0,1,2) for VOLMAP-positive tets), the image must satisfy
 // orient3d(f(u), f(v), f(w), c) > 0 exactly, with c the kernel point: the centroid of the mapped
-// boundary points (each point counted once, summed with compensated summation), or a custom domain's
-// kernel. Sphere maps are judged like every other map (kernel = centroid, VOLMAP's criterion); the
+// boundary points (each point counted once, summed with compensated summation), or a custom or
+// polycube domain's kernel. Sphere maps are judged like every other map (kernel = centroid, VOLMAP's criterion); the
 // sphere only adds the test that the points lie on it. The map must cover every boundary vertex exactly once and nothing else. With a domain, every
 // image point must lie on the domain boundary (distance <= tolerance) and every node target must be
 // hit exactly (bitwise) by exactly one image point: maps made by VOLMAP do not say which vertices are
@@ -29,7 +29,7 @@ struct SurfaceMapCheckOptions {
   double position_tolerance = 0;
   // Accept an all-negative map as well (the reference's behaviour, quirk 12); default: positive only.
   bool accept_either_sign = false;
-  // Use `kernel` instead of the centroid / the custom domain's kernel.
+  // Use `kernel` instead of the centroid / the custom or polycube domain's kernel.
   bool override_kernel = false;
   Point3 kernel{};
   // Sphere domain: when sphere_radius > 0, points must lie on the sphere of that radius around

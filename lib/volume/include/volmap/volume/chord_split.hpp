@@ -1,14 +1,14 @@
 // volmap/volume/chord_split.hpp — B0 of docs/mapping.md §4: split chord edges (at the source midpoint)
 // and chord faces (at the source centroid) so that no interior simplex has all its vertices on the
-// boundary. Conventions: flat TetMeshData, VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0).
-// Children are formed by replacing one parent vertex IN PLACE by the new interior vertex, so each
-// child has orient3d = λ·orient3d(parent) > 0; every child is verified exactly (the new point is
-// nudged along the simplex when rounding to doubles would break it). Original vertex ids 0..nv−1
-// are kept and new vertices appended; a split tet keeps its index for its first child and the other
-// children are appended (labels copied). New vertices are interior (on_boundary = 0).
+// boundary. Conventions: VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0). The splits are
+// TetMesh::split_edge / split_face: every child replaces one vertex of its parent by the new interior
+// vertex, so orient3d(child) = λ·orient3d(parent) > 0; every child is verified exactly before the
+// split (the point is nudged along the simplex when rounding to doubles would break it). Vertex ids
+// never change; new vertices take new slots (vertex properties: their defaults, e.g. locked 0).
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/core/tet_mesh.hpp>
 
 #include <array>
 #include <cstddef>
@@ -25,9 +25,15 @@ struct ChordSplitResult {
   std::size_t vertices_added = 0;
 };
 
-// Splits `edges` first, then those of `faces` that still exist. Edges/faces must be interior
-// simplices of `mesh`; simplices not found (already split) are skipped. on_boundary is extended.
-ChordSplitResult split_chords(TetMeshData& mesh, std::vector<std::uint8_t>& on_boundary,
+// Splits `edges` first, then those of `faces` that still exist. Edges/faces are given by vertex ids;
+// simplices not found (already split) are skipped. Throws Error(Failed) when no split point keeps
+// every child exactly positive (a near-degenerate simplex).
+ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                              const std::vector<std::array<std::uint32_t, 3>>& faces);
+
+// The same on flat arrays: the result is written back compacted (original ids kept, new vertices
+// appended, locked extended with 0).
+ChordSplitResult split_chords(TetMeshData& mesh, std::vector<std::uint8_t>& locked,
                               const std::vector<std::array<std::uint32_t, 2>>& edges,
                               const std::vector<std::array<std::uint32_t, 3>>& faces);
 

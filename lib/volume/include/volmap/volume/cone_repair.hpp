@@ -1,17 +1,20 @@
 // volmap/volume/cone_repair.hpp — B1 star-patch cone repair (docs/mapping.md §7).
 // For each cluster of non-positive target tets: grow a region R (a ball) until its boundary is
-// star-shaped in BOTH the target and the source (strict kernel points from a 4-variable Chebyshev
-// LP solved in double, then verified with exact orient3d), replace R by the cones from one new
-// vertex w (source p, target q) over the outward faces of ∂R, and re-insert R's old interior
-// vertices by splitting the cone tet that contains them (kept vertices; their target is a point
-// strictly inside the matching target tet). Every new tet is exactly positive in both spaces, so
-// the refined source stays a valid tetrahedralisation and the repaired map stays certifiable.
-// Conventions: flat TetMeshData, VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0); boundary
-// vertices and faces are never changed; original vertex ids kept, new vertices appended; tets of a
-// patch reuse the slots of R (extra ones appended, unused slots removed at the end).
+// star-shaped in BOTH the target and the source (strict kernel points, kernel_lp.hpp), replace R by
+// the cones from one apex w (source p, target q) over the outward faces of ∂R, and re-insert R's
+// other interior vertices by splitting the cone tet that contains them (kept vertices; their target
+// is a point strictly inside the matching target tet). Every new tet is exactly positive in both
+// spaces, so the refined source stays a valid tetrahedralisation and the repaired map stays
+// certifiable. The replacement is one TetMesh::replace_cavity edit per patch.
+// Conventions: the source is a TetMesh with VOLMAP-positive tets (orient3d(v0,v1,v2,v3) > 0); the
+// target is a PositionProperty of that mesh and the locked mask a vertex property (locked vertices,
+// the boundary, and the faces of ∂M are never changed). Patches leave tombstones (compact() the
+// mesh afterwards for flat arrays); vertex ids never change, new vertices take new slots.
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/core/properties.hpp>
+#include <volmap/core/tet_mesh.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -23,17 +26,17 @@ struct ConeRepairOptions {
   std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
   std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
   int max_growth_steps = 400;         // per cluster
-  int growth_lookahead = 4;           // growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only
-                                      // (then plain growth and a 2-candidate lookahead are tried when it fails)
+  // Growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only.
+  // After a failure, plain growth and a 2-candidate lookahead are tried too.
+  int growth_lookahead = 4;
   int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
   int max_rounds = 8;                 // recompute clusters and retry
   // Wall-clock limit of the whole call (0 = none), checked before each cluster and at each growth
   // step; a cluster interrupted by it is left exactly as it was (counted in failures.time_limit).
-  // G1 mouse star: 305 bad tets took 34 s without it.
   double time_limit_seconds = 0;
   // When the LP growth fails on a cluster with a face on ∂M: grow again towards fixed target points
   // just inside that face, then near its edges inside both it and the ∂M face across the edge
-  // (exact visibility), see cone_repair.cpp.
+  // (exact visibility), see docs/mapping.md §7.
   bool aimed_growth = true;
 };
 
@@ -54,7 +57,7 @@ struct ConeRepairResult {
     std::size_t last_no_source = 0;     //   ... the source kernel was empty last
     std::size_t reinsertion = 0;        // an interior vertex of R could not be re-inserted
     std::size_t not_positive = 0;       // a new tet not exactly positive in both spaces
-    std::size_t face_mismatch = 0;      // new tets do not close onto ∂R
+    std::size_t face_mismatch = 0;      // new tets do not close onto ∂R (replace_cavity refused them)
     std::size_t budget = 0;             // max_added_tets would be exceeded
     std::size_t time_limit = 0;         // time_limit_seconds reached during growth
   } failures;
@@ -62,29 +65,18 @@ struct ConeRepairResult {
   double seconds_growth = 0, seconds_patch = 0, seconds_setup = 0;
 };
 
-// Repairs the clusters of non-positive target tets in place (source refined, target extended; new
-// vertices appended with on_boundary 0). A cluster whose region cannot be made a ball with strict
-// kernels in both spaces within the limits, or whose patch would exceed max_added_tets, is left
-// exactly as it was (counted in failed_clusters). Throws Error(BadInput) on inconsistent arrays.
-ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& on_boundary,
-                             std::vector<double>& target_xyz, const ConeRepairOptions& options = {});
+// Repairs the clusters of non-positive target tets in place: the mesh is refined, new vertices get
+// their target here and the locked property's default (0). A cluster whose region cannot be made a
+// ball with strict kernels in both spaces within the limits, or whose patch would exceed
+// max_added_tets, is left exactly as it was (counted in failed_clusters). Properties attached to
+// the mesh follow every patch (new tets take the values of the region tet they were cut from).
+ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
+                             const ConeRepairOptions& options = {});
 
-// Strict-kernel point of a set of oriented triangles (3 vertex positions each, 9 doubles per
-// triangle; a point q is inside when orient3d(a,b,c,q) > 0 for every triangle): Chebyshev LP in
-// double, verified exactly. Returns false when no verified point was found.
-bool strict_kernel_point(const std::vector<double>& triangles, double* q);
-
-struct RelocationResult {
-  std::size_t moved = 0;            // vertex moves applied
-  int sweeps = 0;
-  std::size_t nonpositive_before = 0, nonpositive_after = 0;
-};
-
-// The cheap pre-step of §7 (B1 with R = the star of one vertex, no refinement): Gauss–Seidel sweeps
-// over the free vertices of non-positive tets, moving each to the Chebyshev centre of the strict
-// kernel of its target link when that kernel is non-empty (exactly verified). A move makes every
-// tet of the vertex's star strictly positive, so the exact non-positive count never increases.
-RelocationResult relocate_into_link_kernels(const std::vector<std::uint32_t>& tets, const std::vector<std::uint8_t>& locked,
-                                            std::vector<double>& target_xyz, int max_sweeps = 20);
+// The same on flat arrays: builds the TetMesh, repairs, and writes back the compacted result (tet
+// order of the survivors kept, new tets after them or in freed slots; original vertex ids kept, new
+// vertices appended with locked 0). Throws Error(BadInput) on inconsistent arrays.
+ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+                             const ConeRepairOptions& options = {});
 
 }  // namespace volmap

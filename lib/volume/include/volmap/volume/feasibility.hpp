@@ -1,13 +1,14 @@
 // volmap/volume/feasibility.hpp — exact O(T) obstructions to a fixed-connectivity, fixed-boundary map
-// (docs/mapping.md §3). Conventions: flat TetMeshData (0-based ids, VOLMAP-positive source tets),
-// `on_boundary[v]` != 0 for boundary vertices, `target_xyz` = 3 doubles per vertex of which only the
-// boundary entries are read (the prescribed map). Signs are exact (volmap predicates); only the
+// (docs/mapping.md §3). Conventions: the source as a TetMesh without tombstones (or flat TetMeshData),
+// VOLMAP-positive tets, `locked[v]` != 0 for the boundary vertices (those with a prescribed image),
+// `target_xyz` = 3 doubles per vertex of which only the locked entries are read (the prescribed map). Signs are exact (volmap predicates); only the
 // inference "these boundary images lie in one planar facet of the domain" uses a tolerance
 // (1e-6 × domain scale), because map files are rounded: the pre-check routes work, the certifier
 // decides.
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/core/tet_mesh.hpp>
 
 #include <array>
 #include <cstddef>
@@ -43,7 +44,11 @@ struct FeasibilityReport {
   bool infeasible_with_any_refinement() const { return boundary_volume_sign <= 0; }
 };
 
-FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& on_boundary,
+// Throws Error(BadInput) on inconsistent sizes or a mesh with tombstones.
+FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<std::uint8_t>& locked,
+                                      const std::vector<double>& target_xyz);
+// The same, building the TetMesh (Error(BadInput) when the arrays do not form one).
+FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& locked,
                                       const std::vector<double>& target_xyz);
 
 }  // namespace volmap

@@ -15,8 +15,10 @@
 // 0-based ids. Locked vertices are never written (bit-exact boundary).
 //
 // Exact stop: whenever every double determinant is positive, the unscaled candidate coordinates are
-// checked with volmap::orient3d_tets; the untangler stops as soon as that exact check passes.
+// checked with volmap::count_nonpositive; the untangler stops as soon as that exact check passes.
 #pragma once
+
+#include <volmap/core/tet_mesh.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -27,7 +29,9 @@ namespace volmap {
 
 enum class ReferenceShape {
   RegularTet,  // regular tet of volume vol(D)/T for every element (isotropic, "Tutte form")
-  RestShape    // the source tet, scaled so that Σ vol_src = vol(D)
+  RestShape    // the source tet, scaled so that Σ vol_src = vol(D); a tet too flat to invert in double
+               // precision (exactly positive slivers the mapper's refinement may create) takes the
+               // regular reference instead, so every valid source mesh is a usable rest shape
 };
 
 enum class FfmSolver {
@@ -40,7 +44,7 @@ struct FfmOptions {
   FfmSolver solver = FfmSolver::Lbfgs;
   double theta = 0.5;
   int max_outer_iterations = 10000;
-  int max_lbfgs_iterations = 200;  // reference: 3000; capped so ε is updated more often (measured faster on G1 bone)
+  int max_lbfgs_iterations = 200;  // per outer (ε) step; the reference uses 3000, fewer update ε more often
   int max_newton_iterations = 30;  // Newton steps per outer (ε) step
   double gradient_tolerance = 1e-4;
   double time_limit_seconds = 0;  // 0 = no limit
@@ -97,8 +101,9 @@ struct LocalUntangleResult {
   double seconds = 0;
 };
 
-LocalUntangleResult ffm_local_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
-                                       const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+// `source`: the rest mesh without tombstones (its stars give the rings); target_xyz and locked hold
+// 3 doubles and 1 flag per vertex.
+LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                        const LocalUntangleOptions& options = {});
 
 struct QualityResult {
@@ -135,6 +140,8 @@ class FfmEnergy {
   // E_ε(vars) and its Hessian as a dense symmetric num_variables² matrix (row-major), either exact
   // or with every per-tet term SPD-projected (as Newton uses it). For tests of small problems only.
   double evaluate_dense_hessian(const double* vars, double epsilon, bool spd_projection, double* hessian) const;
+  // How many source tets took the regular reference because their rest shape was unusable (RestShape).
+  std::size_t unusable_rest_shapes() const;
   // Minimum D over tets for vars (scaled frame), computed in double.
   double min_det(const double* vars) const;
   // Writes vars back to unscaled coordinates of the free vertices of target_xyz.

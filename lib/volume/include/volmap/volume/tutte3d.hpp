@@ -8,6 +8,7 @@
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/core/tet_mesh.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -19,6 +20,8 @@ namespace volmap {
 // as 2*E ids, sorted lexicographically. Throws Error(BadInput) when a tet references an id >=
 // num_vertices() or repeats a vertex.
 std::vector<std::uint32_t> unique_tet_edges(const TetMeshData& mesh);
+// The same list from a TetMesh's edges (tombstones are not edges).
+std::vector<std::uint32_t> unique_tet_edges(const TetMesh& mesh);
 
 enum class TutteWeights { Uniform };
 // Eigen SimplicialLLT / SimplicialLDLT (AMD ordering), or ConjugateGradient (Jacobi preconditioner,
@@ -44,16 +47,16 @@ struct Tutte3dResult {
   std::vector<double> xyz;  // 3 * num_vertices: boundary vertices exactly at the map's doubles
   std::size_t num_edges = 0;
   std::size_t num_free = 0;   // interior (solved) vertices
-  std::size_t num_fixed = 0;  // boundary (Dirichlet) vertices
+  std::size_t num_fixed = 0;  // locked (Dirichlet) vertices: the boundary
   Tutte3dTimings timings;
 };
 
-// Interior solve for a given fixed mask, reusable by other mappers. `edges` is a unique edge list
-// (as from unique_tet_edges); `fixed[v]` != 0 marks vertex v as Dirichlet: its xyz is kept as given.
+// Interior solve for a given locked mask, reusable by other mappers. `edges` is a unique edge list
+// (as from unique_tet_edges); `locked[v]` != 0 marks vertex v as Dirichlet: its xyz is kept as given.
 // Every other vertex is moved to the uniform-Laplacian (Tutte) solution. Throws Error(Failed) when
-// the system is singular (a free component with no fixed vertex), Error(BadInput) on size mismatch.
+// the system is singular (a free component with no locked vertex), Error(BadInput) on size mismatch.
 Tutte3dTimings solve_uniform_laplacian(std::size_t num_vertices, const std::vector<std::uint32_t>& edges,
-                                       const std::vector<std::uint8_t>& fixed, std::vector<double>& xyz,
+                                       const std::vector<std::uint8_t>& locked, std::vector<double>& xyz,
                                        SparseFactorization factorization = SparseFactorization::LLT);
 
 // Tutte 3D map of `mesh` with boundary vertex `map.vids[k]` fixed at `map.xyz[3k..3k+2]`. The map

@@ -1,21 +1,26 @@
 // volmap/volume/volume_map.hpp — the certified robust volume mapper behind `volmap-map` (docs/mapping.md).
-// Pipeline (what is implemented): exact feasibility analysis (§3) → B0 chord splitting of the
+// Pipeline (what is implemented): exact feasibility analysis (§3) and local infeasibility
+// certificates (§10; at fixed connectivity a certificate ends the run) → B0 chord splitting of the
 // blocking chords (§4, when refinement is allowed) → Tutte 3D (§2, volmap/tutte3d.hpp; or a given
 // initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
 // relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
 // global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
 // and local FFM → [with refinement: B1 cone repair (§7) tried after every stage that leaves few bad
 // tets, global FFM skipped then] rounds of B1 → link-kernel → local FFM (small-lift TLC, then global
-// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only).
-// Each stage is judged by the exact count of non-positive tets and undone when it makes it worse.
-// A result is certified only when the exact check (orient3d > 0 on every tet, on the doubles
-// returned) passes.
+// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only). In the
+// cascade every link-kernel and local-FFM stage that leaves bad tets is followed by the kernel
+// descent (§10).
+// The stages run on one MapState (map_state.hpp, map_stages.hpp); each is judged by the exact count
+// of non-positive tets and undone when it makes it worse (StageJudge). A result is certified only
+// when check_map (the exact check of the check wing) certifies the returned arrays.
 // Conventions: flat TetMeshData, VOLMAP-positive source tets; boundary vertices of the result are
 // bit-identical to the map's doubles; with refinement the source is refined only in the interior,
-// original vertex ids 0..nv−1 are kept and new vertices/tets appended.
+// original vertex ids 0..nv−1 are kept and new vertices appended (the tets of a refined source come
+// in no particular order).
 #pragma once
 
 #include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/infeasibility.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
@@ -29,36 +34,34 @@ enum class MapMethod { Ffm, Tlc };
 struct VolumeMapOptions {
   MapMethod method = MapMethod::Ffm;
   bool allow_refinement = true;
-  double max_growth = 0.05;        // tets added / input tets allowed for refinement
+  double max_growth = 0.05;        // tets added by B0 + B1 / input tets
   double time_limit_seconds = 0;   // 0 = none (soft: checked between and inside stages)
   bool quality_pass = true;
   int quality_iterations = 300;
   // The quality pass may use at most max(quality_min_seconds, quality_time_ratio × the time spent
-  // before it) (and never more than the time limit leaves): on G1 buste cube it otherwise took
-  // 12.4 s after a 2.6 s map.
+  // before it), and never more than the time limit leaves.
   double quality_min_seconds = 2.0;
   double quality_time_ratio = 1.0;
   int max_threads = 0;             // 0 = TBB default; 1 = one core (benchmarks)
-  // Cascade (MapMethod::Ffm) tuning; MapMethod::Tlc gives TLC the whole budget.
-  // Fraction of the remaining time given to the first TLC stage (the tlc-small-alpha round gets 0.3 of
-  // what is left after it, FFM the rest). Kept at 0.5: measured 2026-11-23 (bench/run_map_g1.sh,
-  // MESHES=bone+duck × 5 domains, --threads 1 --time-limit 20 --no-refine --no-quality) 0.5 and 0.8
-  // both certify 8/10 with identical leftovers (bone cube 3, bone star 7 non-positive). TLC either
-  // certifies in < 0.2 s or stalls: on bone cube it stops by itself after 6.4 s (4 bad) whatever the
-  // share; on bone star 10 s → 16 s of TLC still leaves 8 bad, while FFM certifies bone octa
-  // (12–13 s) only when it keeps enough time. So a larger TLC share buys nothing measured here.
+  // Cascade (MapMethod::Ffm): the fraction of the remaining time given to the first TLC stage (the
+  // small-lift TLC round then gets 0.3 of what is left, FFM the rest). MapMethod::Tlc gives TLC the
+  // whole budget.
   double tlc_time_share = 0.5;
-  // With refinement allowed (and a time limit): fraction of the time limit the untangling cascade may
-  // use before the B1 cone-repair rounds start (they may use the rest).
+  // With refinement allowed (and a time limit): the fraction of the time limit the untangling cascade
+  // may use before the B1 cone-repair rounds start (they may use the rest).
   double refine_time_share = 0.5;
   // With refinement allowed: after each cascade stage that leaves at most this many non-positive
-  // tets, B1 cone repair is tried at once (a failed attempt changes nothing).
+  // tets, B1 cone repair is tried at once (a failed attempt changes nothing), and the global FFM
+  // stages are skipped.
   std::size_t early_repair_max_bad = 200;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
   // run after each global untangling stage that stops short of certification (cascade only).
   bool local_untangle = true;
+  // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
+  // (cascade only).
+  bool kernel_descent = true;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
@@ -69,19 +72,25 @@ struct VolumeMapStage {
   std::string name;
   double seconds = 0;
   std::size_t nonpositive_after = 0;  // exact count after the stage
+  std::size_t tets_after = 0;         // source tets after the stage (growth per stage)
+  std::string failure;                // non-empty when the stage threw: its work was undone
 };
 
 struct VolumeMapResult {
   TetMeshData source;               // the (possibly refined) source mesh
   std::vector<double> target_xyz;   // 3 per vertex of `source`
-  std::vector<std::uint8_t> on_boundary;
-  bool certified = false;           // exact check passed on target_xyz (and the source is positive)
+  std::vector<std::uint8_t> locked;  // 1 per vertex of `source`: the boundary (targets prescribed)
+  bool certified = false;           // check_map certified (source, target_xyz) against the map
   bool refined = false;             // source != input
   std::size_t nonpositive = 0;      // exact count at the end
   std::size_t input_tets = 0, input_vertices = 0;
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
+  // Exact local certificates that no strictly positive map exists at the input connectivity
+  // (infeasibility.hpp, each verified). Without refinement a non-empty list ends the run before
+  // any untangler (the result is then not certified, and nothing else could be).
+  std::vector<InfeasibilityCertificate> infeasibility;
   std::vector<VolumeMapStage> stages;
   double seconds = 0;
   double growth() const { return input_tets ? double(source.num_tets()) / double(input_tets) - 1.0 : 0.0; }

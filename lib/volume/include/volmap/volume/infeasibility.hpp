@@ -1,0 +1,67 @@
+// volmap/volume/infeasibility.hpp — exact local proofs that no map with every tet strictly positive
+// exists at the given connectivity (docs/mapping.md §10).
+// Conventions: the source as a TetMesh without tombstones, VOLMAP-positive tets, `locked[v]` != 0
+// for the vertices whose image is fixed (the boundary), `target_xyz` = 3 doubles per vertex of which
+// only the locked entries are read. A certificate names the simplex and the constraints that cannot
+// all hold; each kind is checked exactly (volmap predicates, or exact rationals for the multipliers):
+//   FixedTet             — a tet with four locked vertices whose image has orient3d <= 0.
+//   CoincidentEdge       — an edge with two locked vertices mapped to the same point (exact
+//                          points_equal): every tet of its star is flat whatever the free
+//                          vertices do.
+//   DegenerateFace       — a face with three locked vertices whose images are collinear (exact
+//                          predicate collinear): its tets are flat.
+//   EmptyLinkKernel      — a free vertex v and link faces of v (each the face opposite v in a tet
+//                          of its star, its three vertices locked). Each tet needs
+//                          orient3d(face, x_v) > 0, i.e. n_F·x_v > n_F·a_F with
+//                          n_F = (c−a)×(b−a) for the outward face (a,b,c). Multipliers λ_F >= 0,
+//                          not all zero, with Σ λ_F n_F = 0 and Σ λ_F (n_F·a_F) >= 0 (Farkas /
+//                          Motzkin) show that no point x_v satisfies them all: summing would give
+//                          0 > Σ λ_F n_F·a_F >= 0. n_F, the sums and λ are exact rationals.
+// A certificate proves infeasibility at this connectivity only; refinement may still admit a map.
+#pragma once
+
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/predicates_rational.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace volmap {
+
+enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, EmptyLinkKernel };
+
+struct InfeasibilityCertificate {
+  InfeasibilityKind kind = InfeasibilityKind::FixedTet;
+  std::vector<std::uint32_t> simplex;  // the tet (4 ids), edge (2), face (3) or free vertex (1)
+  std::uint32_t tet = 0;               // a tet that cannot be strictly positive (one of the constraints' tets)
+  // EmptyLinkKernel: the tets whose link faces form the constraint set and their exact multipliers.
+  std::vector<std::uint32_t> constraint_tets;
+  std::vector<Rational> multipliers;
+};
+
+const char* infeasibility_kind_name(InfeasibilityKind kind);
+// One line naming the simplex and constraints (for reports; multipliers as exact fractions).
+std::string describe(const InfeasibilityCertificate& certificate);
+
+struct InfeasibilityOptions {
+  std::size_t max_certificates = 16;  // stop after this many (0 = no limit)
+  // Free vertices with at least this many link faces whose vertices are all locked are tried for
+  // an EmptyLinkKernel certificate (their kernel LP first, in double).
+  std::size_t min_fixed_link_faces = 2;
+};
+
+// Searches every kind above; each certificate returned has passed verify_certificate. Throws
+// Error(BadInput) on inconsistent sizes or a mesh with tombstones.
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const TetMesh& source, const std::vector<std::uint8_t>& locked,
+                                                               const std::vector<double>& target_xyz,
+                                                               const InfeasibilityOptions& options = {});
+
+// Exact check of one certificate against the mesh, the locked mask and the fixed images: the
+// simplex and constraint tets exist and contain what the kind says, the vertices the kind needs
+// are locked, and the exact condition of the kind holds. False on any mismatch.
+bool verify_certificate(const TetMesh& source, const std::vector<std::uint8_t>& locked, const std::vector<double>& target_xyz,
+                        const InfeasibilityCertificate& certificate);
+
+}  // namespace volmap

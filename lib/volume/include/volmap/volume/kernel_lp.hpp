@@ -1,0 +1,36 @@
+// volmap/volume/kernel_lp.hpp — strict kernel points of oriented triangle sets (docs/mapping.md §7):
+// the Chebyshev-centre LP in double, verified with exact orient3d.
+// Orientation: a triangle (a,b,c) is given in the outward order of a VOLMAP-positive tet's face
+// (kTetFace); a point q is on the tet's (inner) side iff orient3d(a,b,c,q) > 0, i.e. n·(q − a) > 0
+// with n = (c − a) × (b − a). Triangles are 9 doubles each (three positions).
+// The LP maximises s subject to n̂_F·(q − a_F) >= s for every triangle F and q in the triangles'
+// bounding box, in a frame centred at the box corner and scaled by 1/diagonal: 4 variables, a dense
+// condensed-tableau simplex with Bland's rule. A double result is never trusted alone: a kernel
+// point is returned only after the exact check.
+#pragma once
+
+#include <volmap/predicates.hpp>
+
+#include <vector>
+
+namespace volmap {
+
+// n = ((c − a)·scale) × ((b − a)·scale): points to the inner side of the outward triangle (a,b,c).
+// Returns |n| (0 for a triangle degenerate in double).
+double inward_face_normal(const double* a, const double* b, const double* c, double scale, double* n);
+
+// Chebyshev centre of the kernel LP, in double. Triangles whose normal vanishes in double are left
+// out (the exact verification rejects them). Returns false when the LP could not be set up or solved;
+// otherwise q is the max-min point and *slack the optimal s in the normalised frame (> 0 iff the
+// double LP found an interior point).
+bool chebyshev_point(const std::vector<double>& triangles, double* q, double* slack);
+
+// Exact: q strictly on the inner side of every triangle (fp: the caller's environment scope).
+bool verified_inside(const FpEnvironmentScope& fp, const std::vector<double>& triangles, const double* q);
+
+// A strict kernel point: the Chebyshev centre when its slack is positive and the exact check passes.
+// Returns false when no verified point was found.
+bool strict_kernel_point(const FpEnvironmentScope& fp, const std::vector<double>& triangles, double* q);
+bool strict_kernel_point(const std::vector<double>& triangles, double* q);
+
+}  // namespace volmap

@@ -1,0 +1,43 @@
+// volmap/volume/map_stages.hpp — the stages of the volume mapper, each one algorithm run on the
+// MapState (docs/mapping.md §8). A stage reads the source mesh, the target and the locked mask from
+// the state and writes the target back; the refining stages (chord splitting, cone repair) edit the
+// mesh and leave no tombstone (B0's splits on a compact mesh make none, cone repair compacts), so
+// every stage starts on a compact mesh. Stages never judge their result: compute_volume_map does
+// that with one StageJudge. Locked vertices are never moved.
+#pragma once
+
+#include <volmap/volume/chord_split.hpp>
+#include <volmap/volume/cone_repair.hpp>
+#include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/ffm.hpp>
+#include <volmap/volume/infeasibility.hpp>
+#include <volmap/volume/kernel_descent.hpp>
+#include <volmap/volume/link_kernel.hpp>
+#include <volmap/volume/map_state.hpp>
+#include <volmap/volume/tlc.hpp>
+
+namespace volmap {
+
+// §3 on the current state (only the locked targets are read).
+FeasibilityReport analyze_feasibility(const MapState& state);
+// §10 exact local infeasibility certificates of the current state (only the locked targets are read).
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& state);
+// §4 B0: splits the blocking chords of `report`; new vertices are unlocked, their target unset.
+ChordSplitResult split_blocking_chords(MapState& state, const FeasibilityReport& report);
+// §2: every unlocked vertex at the uniform-Laplacian (Tutte) solution for the locked ones.
+void place_by_tutte(MapState& state);
+// The same for the vertices after the first `keep` only (the rest keep their target): vertices made
+// by B0 on a given initial map start at the average of their neighbours.
+void place_new_vertices_by_laplacian(MapState& state, std::size_t keep);
+// §6 TLC, §7 link-kernel relocation, §5 FFM (global, local, quality pass) on the state's target.
+TlcResult run_tlc(MapState& state, const TlcOptions& options);
+RelocationResult run_link_kernel(MapState& state, int max_sweeps);
+// §10 bad-tet-driven descent of single vertices towards their link kernel.
+KernelDescentResult run_kernel_descent(MapState& state);
+FfmResult run_ffm(MapState& state, const FfmOptions& options);
+LocalUntangleResult run_local_ffm(MapState& state, const LocalUntangleOptions& options);
+QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds);
+// §7 B1 cone repair; the mesh is compacted afterwards when a patch freed slots.
+ConeRepairResult run_cone_repair(MapState& state, const ConeRepairOptions& options);
+
+}  // namespace volmap

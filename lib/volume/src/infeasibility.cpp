@@ -1,0 +1,319 @@
+// infeasibility.cpp — exact local infeasibility certificates (docs/mapping.md §10; conventions in
+// infeasibility.hpp). The search may use doubles (the kernel LP, to pick the constraints); every
+// certificate it returns has passed verify_certificate, which decides with exact predicates and
+// exact rationals only.
+#include <volmap/volume/infeasibility.hpp>
+
+#include <volmap/core/error.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+namespace volmap {
+
+namespace {
+
+// The null vector of the 3×k matrix whose columns are the normals of `ks` (k <= 4), when the null
+// space has dimension one; scaled so that its entries are >= 0 when that is possible. Empty otherwise.
+std::vector<Rational> one_dimensional_null_vector(const std::vector<StrictHalfspace>& ks) {
+  const std::size_t k = ks.size();
+  std::vector<std::vector<Rational>> m(3, std::vector<Rational>(k));
+  for (int r = 0; r < 3; ++r)
+    for (std::size_t c = 0; c < k; ++c) m[r][c] = ks[c].n[r];
+  std::vector<int> pivot_col;  // reduced row echelon form
+  std::size_t row = 0;
+  for (std::size_t c = 0; c < k && row < 3; ++c) {
+    std::size_t p = row;
+    while (p < 3 && m[p][c] == 0) ++p;
+    if (p == 3) continue;
+    std::swap(m[p], m[row]);
+    const Rational inv = Rational(1) / m[row][c];
+    for (std::size_t j = 0; j < k; ++j) m[row][j] *= inv;
+    for (std::size_t r = 0; r < 3; ++r)
+      if (r != row && m[r][c] != 0) {
+        const Rational f = m[r][c];
+        for (std::size_t j = 0; j < k; ++j) m[r][j] -= f * m[row][j];
+      }
+    pivot_col.push_back(int(c));
+    ++row;
+  }
+  if (pivot_col.size() + 1 != k) return {};
+  std::vector<std::uint8_t> is_pivot(k, 0);
+  for (int c : pivot_col) is_pivot[std::size_t(c)] = 1;
+  const std::size_t free_col = std::size_t(std::find(is_pivot.begin(), is_pivot.end(), 0) - is_pivot.begin());
+  std::vector<Rational> lambda(k, Rational(0));
+  lambda[free_col] = 1;
+  for (std::size_t r = 0; r < pivot_col.size(); ++r) lambda[std::size_t(pivot_col[r])] = -m[r][free_col];
+  if (std::all_of(lambda.begin(), lambda.end(), [](const Rational& x) { return x <= 0; }))
+    for (Rational& x : lambda) x = -x;
+  return lambda;
+}
+
+// Calls f(subset) for every subset of {0..n-1} of size 1..4 in increasing size; stops when f
+// returns true (and returns true then).
+template <class F>
+bool for_each_small_subset(std::size_t n, F&& f) {
+  std::vector<std::size_t> s;
+  for (std::size_t size = 1; size <= std::min<std::size_t>(4, n); ++size) {
+    s.resize(size);
+    std::iota(s.begin(), s.end(), std::size_t(0));
+    while (true) {
+      if (f(s)) return true;
+      std::size_t i = size;
+      while (i > 0 && s[i - 1] == n - size + i - 1) --i;
+      if (i == 0) break;
+      ++s[i - 1];
+      for (std::size_t j = i; j < size; ++j) s[j] = s[j - 1] + 1;
+    }
+  }
+  return false;
+}
+
+bool tet_contains(const TetMesh& mesh, std::uint32_t t, std::uint32_t v) {
+  for (VertexId u : mesh.tet_vertices(TetId(t)))
+    if (u.idx() == v) return true;
+  return false;
+}
+
+// The face of tet t opposite v, when v is a vertex of t and the face's vertices are all locked.
+bool locked_link_face(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, std::uint32_t t, std::uint32_t v,
+                      std::array<std::uint32_t, 3>& face) {
+  if (t >= mesh.num_tet_slots() || !mesh.tet_is_live(TetId(t)) || !tet_contains(mesh, t, v)) return false;
+  const auto f = mesh.half_face_vertices(HalfFaceId(TetId(t), mesh.tet_local_index(TetId(t), VertexId(v))));
+  for (int i = 0; i < 3; ++i) {
+    face[std::size_t(i)] = f[std::size_t(i)].idx();
+    if (!locked[face[std::size_t(i)]]) return false;
+  }
+  return true;
+}
+
+const double* at(const std::vector<double>& X, std::uint32_t v) { return X.data() + 3 * std::size_t(v); }
+
+class CertificateSearch {
+ public:
+  CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
+                    const InfeasibilityOptions& options)
+      : mesh_(mesh), locked_(locked), X_(X), options_(options) {}
+
+  std::vector<InfeasibilityCertificate> run() {
+    fixed_tets();
+    coincident_edges();
+    degenerate_faces();
+    empty_link_kernels();
+    return std::move(found_);
+  }
+
+ private:
+  const TetMesh& mesh_;
+  const std::vector<std::uint8_t>& locked_;
+  const std::vector<double>& X_;
+  const InfeasibilityOptions& options_;
+  std::vector<InfeasibilityCertificate> found_;
+
+  bool full() const { return options_.max_certificates > 0 && found_.size() >= options_.max_certificates; }
+  void keep(InfeasibilityCertificate c) {
+    if (!full() && verify_certificate(mesh_, locked_, X_, c)) found_.push_back(std::move(c));
+  }
+  bool all_locked(const std::uint32_t* v, int n) const {
+    for (int i = 0; i < n; ++i)
+      if (!locked_[v[i]]) return false;
+    return true;
+  }
+
+  void fixed_tets() {
+    const std::vector<std::uint32_t>& tv = mesh_.tet_vertex_array();
+    for (std::uint32_t t = 0; t < mesh_.num_tet_slots() && !full(); ++t) {
+      const std::uint32_t* v = &tv[4 * std::size_t(t)];
+      if (all_locked(v, 4) && orient3d(at(X_, v[0]), at(X_, v[1]), at(X_, v[2]), at(X_, v[3])) <= 0)
+        keep({InfeasibilityKind::FixedTet, {v[0], v[1], v[2], v[3]}, t, {}, {}});
+    }
+  }
+
+  void coincident_edges() {
+    for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
+      const auto ends = mesh_.edge_vertices(EdgeId(e));
+      const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
+      if (!all_locked(v, 2)) continue;
+      if (points_equal(at(X_, v[0]), at(X_, v[1])))
+        keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}});
+    }
+  }
+
+  void degenerate_faces() {
+    for (std::uint32_t h = 0; h < 4 * mesh_.num_tet_slots() && !full(); ++h) {
+      const HalfFaceId hf(h);
+      const HalfFaceId o = mesh_.half_face_opposite(hf);
+      if (o.is_valid() && o.idx() < h) continue;  // each interior face once
+      const auto f = mesh_.half_face_vertices(hf);
+      const std::uint32_t v[3] = {f[0].idx(), f[1].idx(), f[2].idx()};
+      if (all_locked(v, 3) && collinear(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
+        keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}});
+    }
+  }
+
+  void empty_link_kernels() {
+    std::vector<std::uint32_t> tets;
+    std::vector<double> tri;
+    for (std::uint32_t v = 0; v < mesh_.num_vertex_slots() && !full(); ++v) {
+      if (locked_[v] || !mesh_.vertex_is_live(VertexId(v))) continue;
+      tets.clear();
+      tri.clear();
+      for (TetId t : mesh_.vertex_tets(VertexId(v))) {
+        std::array<std::uint32_t, 3> face;
+        if (!locked_link_face(mesh_, locked_, t.idx(), v, face)) continue;
+        tets.push_back(t.idx());
+        for (std::uint32_t u : face) tri.insert(tri.end(), at(X_, u), at(X_, u) + 3);
+      }
+      if (tets.size() >= std::max<std::size_t>(1, options_.min_fixed_link_faces)) try_link_kernel(v, tets, tri);
+    }
+  }
+
+  // The kernel LP bounds its point by the triangles' bounding box, which is flat when the faces
+  // are coplanar (a partial link on a domain facet). A triangle with a zero normal is left out of
+  // the LP but widens the box: one spanning the box grown by its diagonal on every side.
+  static std::vector<double> padded_by_a_flat_triangle(std::vector<double> tri) {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (std::size_t k = 0; k < tri.size() / 3; ++k)
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], tri[3 * k + i]);
+        hi[i] = std::max(hi[i], tri[3 * k + i]);
+      }
+    const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    for (int corner = 0; corner < 3; ++corner)
+      for (int i = 0; i < 3; ++i) tri.push_back(corner < 2 ? lo[i] - diag : hi[i] + diag);
+    return tri;
+  }
+
+  // The kernel LP (double) decides whether to look; the constraints most violated at its
+  // Chebyshev point are tried first, then all of them when there are few.
+  void try_link_kernel(std::uint32_t v, const std::vector<std::uint32_t>& tets, const std::vector<double>& tri) {
+    double q[3], slack = 0;
+    const bool solved = chebyshev_point(padded_by_a_flat_triangle(tri), q, &slack);
+    if (solved && slack > 1e-9) return;  // a clearly non-empty kernel
+    const std::size_t m = tets.size();
+    std::vector<std::size_t> order(m);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    if (solved) {
+      std::vector<double> residual(m);
+      for (std::size_t j = 0; j < m; ++j) {
+        double n[3];
+        const double len = inward_face_normal(&tri[9 * j], &tri[9 * j + 3], &tri[9 * j + 6], 1.0, n);
+        residual[j] = len > 0 ? (n[0] * (q[0] - tri[9 * j]) + n[1] * (q[1] - tri[9 * j + 1]) + n[2] * (q[2] - tri[9 * j + 2])) / len
+                              : -1e300;
+      }
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return residual[a] < residual[b]; });
+    }
+    std::vector<StrictHalfspace> ks(m);
+    for (std::size_t j = 0; j < m; ++j) ks[j] = strict_halfspace(&tri[9 * j], &tri[9 * j + 3], &tri[9 * j + 6]);
+    for (std::size_t pool : {std::min<std::size_t>(m, 8), m <= 14 ? m : std::size_t(0)}) {
+      if (pool == 0) break;
+      std::vector<StrictHalfspace> sub;
+      const bool hit = for_each_small_subset(pool, [&](const std::vector<std::size_t>& s) {
+        sub.clear();
+        for (std::size_t i : s) sub.push_back(ks[order[i]]);
+        std::vector<Rational> lambda = one_dimensional_null_vector(sub);
+        if (!farkas_certifies_empty(sub, lambda)) return false;
+        InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda};
+        for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
+        keep(std::move(c));
+        return true;
+      });
+      if (hit || pool == m) break;
+    }
+  }
+};
+
+}  // namespace
+
+const char* infeasibility_kind_name(InfeasibilityKind kind) {
+  switch (kind) {
+    case InfeasibilityKind::FixedTet: return "fixed-tet";
+    case InfeasibilityKind::CoincidentEdge: return "coincident-edge";
+    case InfeasibilityKind::DegenerateFace: return "degenerate-face";
+    case InfeasibilityKind::EmptyLinkKernel: return "empty-link-kernel";
+  }
+  return "?";
+}
+
+std::string describe(const InfeasibilityCertificate& c) {
+  auto ids = [](const std::vector<std::uint32_t>& v) {
+    std::string s;
+    for (std::uint32_t x : v) s += (s.empty() ? "" : " ") + std::to_string(x);
+    return s;
+  };
+  std::string s = std::string(infeasibility_kind_name(c.kind)) + ": ";
+  switch (c.kind) {
+    case InfeasibilityKind::FixedTet:
+      return s + "tet " + std::to_string(c.tet) + " (vertices " + ids(c.simplex) + ", all fixed) has orient3d <= 0";
+    case InfeasibilityKind::CoincidentEdge:
+      return s + "fixed vertices " + ids(c.simplex) + " have the same image: tet " + std::to_string(c.tet) + " is flat";
+    case InfeasibilityKind::DegenerateFace:
+      return s + "fixed vertices " + ids(c.simplex) + " have collinear images: tet " + std::to_string(c.tet) + " is flat";
+    case InfeasibilityKind::EmptyLinkKernel:
+      s += "free vertex " + ids(c.simplex) + ": the fixed link faces of tets";
+      for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
+        s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
+      return s + " have no common strict inner side";
+  }
+  return s;
+}
+
+std::vector<InfeasibilityCertificate> find_local_infeasibility(const TetMesh& source, const std::vector<std::uint8_t>& locked,
+                                                               const std::vector<double>& target_xyz,
+                                                               const InfeasibilityOptions& options) {
+  const std::size_t nv = source.num_vertex_slots();
+  if (locked.size() != nv || target_xyz.size() != 3 * nv)
+    throw Error(ErrorKind::BadInput, "", 0, "find_local_infeasibility: inconsistent array sizes");
+  if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
+    throw Error(ErrorKind::BadInput, "", 0, "find_local_infeasibility: the mesh has tombstones (compact it first)");
+  return CertificateSearch(source, locked, target_xyz, options).run();
+}
+
+bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
+                        const InfeasibilityCertificate& c) {
+  const std::size_t nv = mesh.num_vertex_slots();
+  if (locked.size() != nv || X.size() != 3 * nv) return false;
+  for (std::uint32_t v : c.simplex)
+    if (v >= nv || !mesh.vertex_is_live(VertexId(v))) return false;
+  if (c.tet >= mesh.num_tet_slots() || !mesh.tet_is_live(TetId(c.tet))) return false;
+  auto in_tet = [&](std::uint32_t t) {
+    return std::all_of(c.simplex.begin(), c.simplex.end(), [&](std::uint32_t v) { return tet_contains(mesh, t, v); });
+  };
+  auto simplex_locked = [&] { return std::all_of(c.simplex.begin(), c.simplex.end(), [&](std::uint32_t v) { return locked[v] != 0; }); };
+  switch (c.kind) {
+    case InfeasibilityKind::FixedTet: {
+      if (c.simplex.size() != 4 || !simplex_locked()) return false;
+      const auto tv = mesh.tet_vertices(TetId(c.tet));
+      for (int i = 0; i < 4; ++i)
+        if (tv[std::size_t(i)].idx() != c.simplex[std::size_t(i)]) return false;
+      return orient3d(at(X, c.simplex[0]), at(X, c.simplex[1]), at(X, c.simplex[2]), at(X, c.simplex[3])) <= 0;
+    }
+    case InfeasibilityKind::CoincidentEdge: {
+      if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || !simplex_locked() || !in_tet(c.tet)) return false;
+      return points_equal(at(X, c.simplex[0]), at(X, c.simplex[1]));
+    }
+    case InfeasibilityKind::DegenerateFace: {
+      if (c.simplex.size() != 3 || !simplex_locked() || !in_tet(c.tet)) return false;
+      const std::uint32_t a = c.simplex[0], b = c.simplex[1], d = c.simplex[2];
+      return a != b && b != d && a != d && collinear(at(X, a), at(X, b), at(X, d));
+    }
+    case InfeasibilityKind::EmptyLinkKernel: {
+      if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||
+          c.constraint_tets.size() != c.multipliers.size() || !in_tet(c.tet))
+        return false;
+      std::vector<StrictHalfspace> ks;
+      for (std::uint32_t t : c.constraint_tets) {
+        std::array<std::uint32_t, 3> f;
+        if (!locked_link_face(mesh, locked, t, c.simplex[0], f)) return false;
+        ks.push_back(strict_halfspace(at(X, f[0]), at(X, f[1]), at(X, f[2])));
+      }
+      return farkas_certifies_empty(ks, c.multipliers);
+    }
+  }
+  return false;
+}
+
+}  // namespace volmap

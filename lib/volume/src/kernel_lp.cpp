@@ -1,0 +1,143 @@
+// kernel_lp.cpp — the strict-kernel LP of docs/mapping.md §7 (conventions in kernel_lp.hpp).
+#include <volmap/volume/kernel_lp.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace volmap {
+
+namespace {
+
+// maximise c·x s.t. A x <= b, x >= 0 with b >= 0 (origin feasible). A is m×n row-major.
+// Returns false when unbounded or out of iterations; x receives the solution.
+bool simplex_max(int m, int n, std::vector<double>& A, std::vector<double>& b, std::vector<double> c, double* x) {
+  std::vector<int> row_label(m), col_label(n);  // labels: 0..n-1 original vars, n.. slacks
+  for (int j = 0; j < n; ++j) col_label[j] = j;
+  for (int i = 0; i < m; ++i) row_label[i] = n + i;
+  const double eps = 1e-12;
+  for (int iter = 0; iter < 50 * (m + n); ++iter) {
+    int e = -1;
+    for (int j = 0; j < n; ++j)
+      if (c[j] > eps && (e < 0 || col_label[j] < col_label[e])) e = j;
+    if (e < 0) break;  // optimal
+    int r = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < m; ++i) {
+      const double a = A[std::size_t(i) * n + e];
+      if (a > eps) {
+        const double ratio = b[i] / a;
+        if (ratio < best - 1e-15 || (ratio <= best + 1e-15 && r >= 0 && row_label[i] < row_label[r])) {
+          best = ratio;
+          r = i;
+        }
+      }
+    }
+    if (r < 0) return false;  // unbounded
+    const double piv = A[std::size_t(r) * n + e];
+    // Row r.
+    for (int j = 0; j < n; ++j)
+      if (j != e) A[std::size_t(r) * n + j] /= piv;
+    b[r] /= piv;
+    A[std::size_t(r) * n + e] = 1.0 / piv;
+    for (int i = 0; i < m; ++i) {
+      if (i == r) continue;
+      const double aie = A[std::size_t(i) * n + e];
+      if (aie == 0) continue;
+      for (int j = 0; j < n; ++j)
+        if (j != e) A[std::size_t(i) * n + j] -= aie * A[std::size_t(r) * n + j];
+      b[i] -= aie * b[r];
+      A[std::size_t(i) * n + e] = -aie / piv;
+    }
+    const double ce = c[e];
+    for (int j = 0; j < n; ++j)
+      if (j != e) c[j] -= ce * A[std::size_t(r) * n + j];
+    c[e] = -ce / piv;
+    std::swap(row_label[r], col_label[e]);
+  }
+  for (int j = 0; j < n; ++j) x[j] = 0;
+  for (int i = 0; i < m; ++i)
+    if (row_label[i] < n) x[row_label[i]] = b[i];
+  return true;
+}
+
+}  // namespace
+
+double inward_face_normal(const double* a, const double* b, const double* c, double scale, double* n) {
+  double u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = (c[i] - a[i]) * scale;
+    v[i] = (b[i] - a[i]) * scale;
+  }
+  n[0] = u[1] * v[2] - u[2] * v[1];
+  n[1] = u[2] * v[0] - u[0] * v[2];
+  n[2] = u[0] * v[1] - u[1] * v[0];
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+bool chebyshev_point(const std::vector<double>& tri, double* q, double* slack) {
+  const std::size_t nf = tri.size() / 9;
+  if (nf == 0) return false;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (std::size_t k = 0; k < 3 * nf; ++k)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], tri[3 * k + i]);
+      hi[i] = std::max(hi[i], tri[3 * k + i]);
+    }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  if (!(diag > 0)) return false;
+  // Work in a frame centred at lo and scaled by 1/diag (conditioning).
+  const double inv = 1.0 / diag;
+  const double S0 = 2.0;
+  const int n = 4;
+  std::vector<double> A, b;
+  A.reserve((nf + 4) * n);
+  b.reserve(nf + 4);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const double* a = &tri[9 * f];
+    const double* bb = a + 3;
+    const double* c = a + 6;
+    double nn[3];
+    const double len = inward_face_normal(a, bb, c, inv, nn);
+    if (!(len > 0)) continue;  // degenerate in double: no strict kernel (left to the exact check)
+    // n̂·(q' − a') ≥ s  ⇔  −n̂·q' + s' ≤ −n̂·a' + S0   (q' = (q − lo)/diag, s' = s + S0)
+    double rhs = S0;
+    for (int i = 0; i < 3; ++i) {
+      const double ni = nn[i] / len;
+      A.push_back(-ni);
+      rhs -= ni * (a[i] - lo[i]) * inv;
+    }
+    A.push_back(1.0);
+    b.push_back(std::max(rhs, 0.0));
+  }
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) A.push_back(i == j ? 1.0 : 0.0);
+    b.push_back(i < 3 ? (hi[i] - lo[i]) * inv : S0 + 1.0);
+  }
+  const int m = int(b.size());
+  double x[4];
+  if (!simplex_max(m, n, A, b, {0, 0, 0, 1}, x)) return false;
+  *slack = x[3] - S0;
+  for (int i = 0; i < 3; ++i) q[i] = lo[i] + x[i] * diag;
+  return true;
+}
+
+bool verified_inside(const FpEnvironmentScope& fp, const std::vector<double>& tri, const double* q) {
+  for (std::size_t f = 0; f < tri.size() / 9; ++f)
+    if (fp.orient3d(&tri[9 * f], &tri[9 * f + 3], &tri[9 * f + 6], q) <= 0) return false;
+  return true;
+}
+
+bool strict_kernel_point(const FpEnvironmentScope& fp, const std::vector<double>& tri, double* q) {
+  double slack = 0;
+  if (!chebyshev_point(tri, q, &slack) || !(slack > 0)) return false;
+  return verified_inside(fp, tri, q);
+}
+
+bool strict_kernel_point(const std::vector<double>& tri, double* q) {
+  const FpEnvironmentScope fp;
+  return strict_kernel_point(fp, tri, q);
+}
+
+}  // namespace volmap

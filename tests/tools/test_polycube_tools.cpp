@@ -1,0 +1,132 @@
+// Polycube domains through the tools: G1 bone and duck mapped onto cross7 and L3 by
+// volmap-surface-map, the maps re-checked by volmap-surface-map-check --domain polycube:<cells>, the
+// volume maps certified by volmap-map and re-certified independently by volmap-map-check; a U of 5
+// cells refused with exit 2 and a one-line reason naming the file and a cell; volmap-dataset
+// publishing sphere and polycube maps (suffix pc) of a generated mesh, re-checked here.
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/testing/generate.hpp>
+
+#include "test_support.hpp"
+#include "vmap_test_util.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+using vmap_test::quote;
+using vmap_test::run;
+
+namespace {
+
+std::string tool(const char* name) { return quote(volmap_test::tool(name).string()); }
+
+// The stderr of a command (stdout dropped), and its exit code.
+vmap_test::RunResult run_stderr(const std::string& command) { return run("(" + command + " 2>&1 >/dev/null)"); }
+
+}  // namespace
+
+TEST_CASE("volmap-surface-map and volmap-map: G1 bone and duck onto cross7 and L3, certified") {
+  VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
+  VOLMAP_REQUIRE_DATA(duck, "volmap/G1/duck.mesh");
+  const fs::path d = volmap_test::scratch_dir("polycube_g1");
+  for (const auto& [name, path] : {std::pair<std::string, fs::path>{"bone", bone}, {"duck", duck}})
+    for (const std::string cells : {"cross7", "L3"}) {
+      const std::string id = name + "_" + cells;
+      CAPTURE(id);
+      const std::string map = (d / (id + ".txt")).string(), in = (d / (id + "_in.mesh")).string();
+      const std::string out = (d / (id + "_out.mesh")).string(), refined = (d / (id + "_refined.mesh")).string();
+      // Both spellings of the domain: polycube --cells X and polycube:X.
+      const std::string domain = cells == "L3" ? "polycube --cells L3" : "polycube:" + cells;
+      auto r = run(tool("volmap-surface-map") + " " + domain + " " + quote(path.string()) + " " + quote(map) +
+                   " --refined " + quote(in) + " --json");
+      REQUIRE(r.code == 0);
+      const auto sm = nlohmann::json::parse(r.out);
+      CHECK(sm["domain"] == "polycube");
+      CHECK(sm["check_positive"] == sm["check_triangles"]);
+      const std::string source = sm["added_vertices"].get<int>() > 0 ? in : path.string();
+      r = run(tool("volmap-surface-map-check") + " " + quote(source) + " " + quote(map) + " --domain polycube:" + cells +
+              " --json");
+      CHECK(r.code == 0);
+      const auto c = nlohmann::json::parse(r.out);
+      CHECK(c["negative"] == 0);
+      CHECK(c["zero"] == 0);
+      CHECK(c["off_domain"] == 0);
+      CHECK(c["corners_exact"] == (cells == "L3" ? 16 : 32));
+      r = run(tool("volmap-map") + " " + quote(source) + " " + quote(map) + " " + quote(out) + " --refined-input " +
+              quote(refined) + " --json");
+      CHECK(r.code == 0);
+      const auto v = nlohmann::json::parse(r.out);
+      CHECK(v["certified"] == true);
+      CHECK(v["boundary_exact"] == true);
+      MESSAGE(id << ": +" << sm["added_vertices"] << " surface vertices; volume map certified by " << v["certified_by"]
+                 << " in " << v["seconds"] << " s");
+      const std::string final_source = v["refined"] == true ? refined : source;
+      CHECK(run(tool("volmap-map-check") + " " + quote(final_source) + " " + quote(out) + " --absolute --boundary " +
+                quote(map))
+                .code == 0);
+    }
+}
+
+TEST_CASE("a polycube that is not star-shaped is refused with exit 2, naming the file and a cell") {
+  const fs::path d = volmap_test::scratch_dir("polycube_refused");
+  const std::string u5 = volmap_test::write_bytes(d / "u5.txt", "# a U of 5 cells\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n2 1 0\n");
+  const std::string mesh = (d / "cube.mesh").string();
+  volmap::write_medit(mesh, volmap::generate_kuhn_unit_cube(4));
+  const std::string map = (d / "map.txt").string();
+  for (const std::string& domain : {"polycube:" + u5, "polycube --cells " + quote(u5)}) {
+    CAPTURE(domain);
+    const auto r = run_stderr(tool("volmap-surface-map") + " " + domain + " " + quote(mesh) + " " + quote(map));
+    CHECK(r.code == 2);
+    CHECK(r.out.find(u5) != std::string::npos);
+    CHECK(r.out.find("not strictly star-shaped") != std::string::npos);
+    CHECK(r.out.find("cell (") != std::string::npos);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+    CHECK(!fs::exists(map));
+  }
+  CHECK(run(tool("volmap-surface-map") + " polycube " + quote(mesh) + " " + quote(map)).code == 2);  // no cells
+  CHECK(run(tool("volmap-surface-map") + " cube " + quote(mesh) + " " + quote(map) + " --cells L3").code == 2);
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(mesh) + " " + quote(map) + " --domain polycube:" + quote(u5))
+            .code == 2);
+}
+
+TEST_CASE("volmap-dataset adds sphere and polycube maps to a group") {
+  if (!fs::exists(volmap_test::tool("volmap-dataset"))) {
+    MESSAGE("skipped: volmap-dataset is not built (needs TetGen)");
+    return;
+  }
+  const fs::path d = volmap_test::scratch_dir("polycube_dataset");
+  fs::create_directories(d / "in");
+  volmap::write_medit((d / "in" / "cube8.mesh").string(), volmap::generate_kuhn_unit_cube(8));
+  const fs::path ds = d / "ds";
+  auto r = run(tool("volmap-dataset") + " " + quote((d / "in").string()) + " " + quote(ds.string()) +
+               " --group G9 --domains cube,sphere,polycube:L3 --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["added"] == 1);
+  const std::string mesh = (ds / "G9" / "cube8.mesh").string();
+  REQUIRE(fs::exists(mesh));
+  // The published cells describe the polycube the map lies on.
+  const std::string cells = (ds / "G9_pc" / "cube8_pc_cells.txt").string();
+  REQUIRE(fs::exists(cells));
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(mesh) + " " + quote((ds / "G9_pc" / "cube8_pc.txt").string()) +
+            " --domain polycube:" + quote(cells))
+            .code == 0);
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(mesh) + " " +
+            quote((ds / "G9_sphere" / "cube8_sphere.txt").string()) + " --domain sphere")
+            .code == 0);
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(mesh) + " " + quote((ds / "G9_cube" / "cube8_cube.txt").string()) +
+            " --domain cube")
+            .code == 0);
+  // A non-star-shaped polycube is bad input before any work is done.
+  const std::string u5 = volmap_test::write_bytes(d / "u5.txt", "0 0 0\n1 0 0\n2 0 0\n0 1 0\n2 1 0\n");
+  r = run_stderr(tool("volmap-dataset") + " " + quote((d / "in").string()) + " " + quote((d / "ds2").string()) +
+                 " --group G9 --domains polycube:" + quote(u5));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("not strictly star-shaped") != std::string::npos);
+  CHECK(run(tool("volmap-dataset") + " " + quote((d / "in").string()) + " " + quote((d / "ds3").string()) +
+            " --group G9 --domains polycube:L3,polycube:cross7")
+            .code == 2);
+}

@@ -1,0 +1,210 @@
+// Exact local infeasibility certificates (infeasibility.hpp, mapping.md §10): constructed impossible
+// cases give a certificate that an independent exact oracle (rationals computed here) confirms;
+// feasible cases, shown feasible by an exactly checked witness point, never get one.
+#include <doctest/doctest.h>
+
+#include <volmap/core/tet_mesh.hpp>
+#include <volmap/io/io.hpp>
+#include <volmap/predicates_rational.hpp>
+#include <volmap/volume/infeasibility.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/volume_map.hpp>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+#include "vmap_test_util.hpp"
+
+namespace {
+
+using volmap::InfeasibilityKind;
+using volmap::Rational;
+
+// A bipyramid over the base A B C with apexes N (up) and S (down) around one free vertex v = 0 at
+// the origin: ids v=0, A=1, B=2, C=3, N=4, S=5; each tet is (outward boundary face, v).
+volmap::TetMeshData bipyramid() {
+  volmap::TetMeshData m;
+  m.xyz = {0, 0, 0, 1, 0, 0, -0.5, 0.875, 0, -0.5, -0.875, 0, 0, 0, 1, 0, 0, -1};
+  m.tets = {1, 2, 4, 0, 2, 3, 4, 0, 3, 1, 4, 0, 2, 1, 5, 0, 3, 2, 5, 0, 1, 3, 5, 0};
+  return m;
+}
+const std::vector<std::uint8_t> kBipyramidLocked = {0, 1, 1, 1, 1, 1};
+
+std::vector<volmap::InfeasibilityCertificate> certificates_of(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& locked,
+                                                              const std::vector<double>& target) {
+  return volmap::find_local_infeasibility(volmap::TetMesh(m), locked, target);
+}
+
+bool has_kind(const std::vector<volmap::InfeasibilityCertificate>& cs, InfeasibilityKind k) {
+  return std::any_of(cs.begin(), cs.end(), [&](const auto& c) { return c.kind == k; });
+}
+
+// Independent oracle for an EmptyLinkKernel certificate of the bipyramid: each constraint tet is
+// (a, b, c, v) with v last, so its constraint is orient3d(a, b, c, x) > 0, i.e. n·x > n·a with
+// n = (c − a) × (b − a); the multipliers must be >= 0, not all 0, Σλn = 0 and Σλ n·a >= 0.
+bool oracle_farkas(const volmap::TetMeshData& m, const std::vector<double>& X, const volmap::InfeasibilityCertificate& c) {
+  Rational sx = 0, sy = 0, sz = 0, sd = 0;
+  bool positive = false;
+  for (std::size_t j = 0; j < c.constraint_tets.size(); ++j) {
+    const std::uint32_t* t = &m.tets[4 * c.constraint_tets[j]];
+    if (t[3] != c.simplex[0]) return false;
+    Rational p[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) p[k][i] = X[3 * t[k] + i];
+    const Rational u[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const Rational w[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const Rational n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const Rational& l = c.multipliers[j];
+    if (l < 0) return false;
+    positive = positive || l > 0;
+    sx += l * n[0];
+    sy += l * n[1];
+    sz += l * n[2];
+    sd += l * (n[0] * p[0][0] + n[1] * p[0][1] + n[2] * p[0][2]);
+  }
+  return positive && sx == 0 && sy == 0 && sz == 0 && sd >= 0;
+}
+
+}  // namespace
+
+TEST_CASE("a fixed tet with an inverted, flat or collinear image gets the matching certificate") {
+  volmap::TetMeshData m;
+  m.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  m.tets = {0, 1, 2, 3};
+  if (volmap::orient3d(&m.xyz[0], &m.xyz[3], &m.xyz[6], &m.xyz[9]) < 0) std::swap(m.tets[2], m.tets[3]);
+  const std::vector<std::uint8_t> locked(4, 1);
+  CHECK(certificates_of(m, locked, m.xyz).empty());  // the identity is feasible
+
+  std::vector<double> swapped = m.xyz;  // two images exchanged: orient3d < 0
+  std::swap_ranges(swapped.begin(), swapped.begin() + 3, swapped.begin() + 3);
+  auto cs = certificates_of(m, locked, swapped);
+  REQUIRE(cs.size() == 1);
+  CHECK(cs[0].kind == InfeasibilityKind::FixedTet);
+  CHECK(cs[0].tet == 0);
+  const std::uint32_t* t = m.tets.data();
+  CHECK(volmap::orient3d(&swapped[3 * t[0]], &swapped[3 * t[1]], &swapped[3 * t[2]], &swapped[3 * t[3]]) < 0);
+
+  std::vector<double> coincident = m.xyz;  // vertex 1 onto vertex 0
+  std::copy(coincident.begin(), coincident.begin() + 3, coincident.begin() + 3);
+  cs = certificates_of(m, locked, coincident);
+  CHECK(has_kind(cs, InfeasibilityKind::CoincidentEdge));
+  CHECK(has_kind(cs, InfeasibilityKind::FixedTet));
+
+  std::vector<double> collinear = m.xyz;  // vertex 2 at 3·(vertex 1): 0, 1, 2 on the x axis
+  collinear[6] = 3, collinear[7] = 0, collinear[8] = 0;
+  cs = certificates_of(m, locked, collinear);
+  REQUIRE(has_kind(cs, InfeasibilityKind::DegenerateFace));
+  CHECK(!has_kind(cs, InfeasibilityKind::CoincidentEdge));
+  for (const auto& c : cs) CHECK(volmap::verify_certificate(volmap::TetMesh(m), locked, collinear, c));
+}
+
+TEST_CASE("a folded bipyramid link has an empty strict kernel with an exact Farkas certificate") {
+  const volmap::TetMeshData m = bipyramid();
+  const volmap::TetMesh mesh(m);
+  for (std::size_t t = 0; t < m.num_tets(); ++t)
+    REQUIRE(volmap::orient3d(&m.xyz[3 * m.tets[4 * t]], &m.xyz[3 * m.tets[4 * t + 1]], &m.xyz[3 * m.tets[4 * t + 2]],
+                             &m.xyz[3 * m.tets[4 * t + 3]]) > 0);
+  CHECK(certificates_of(m, kBipyramidLocked, m.xyz).empty());  // the source itself is a valid map
+
+  std::vector<double> folded = m.xyz;  // N moved below the base and off the axis
+  folded[12] = 2, folded[13] = 0, folded[14] = -0.5;
+  const auto cs = certificates_of(m, kBipyramidLocked, folded);
+  REQUIRE(cs.size() == 1);
+  const auto& c = cs[0];
+  CHECK(c.kind == InfeasibilityKind::EmptyLinkKernel);
+  CHECK(c.simplex == std::vector<std::uint32_t>{0});
+  CHECK(oracle_farkas(m, folded, c));
+  CHECK(volmap::verify_certificate(mesh, kBipyramidLocked, folded, c));
+  CHECK(volmap::describe(c).find("empty-link-kernel: free vertex 0") == 0);
+
+  // Tampered certificates are refused.
+  auto bad = c;
+  bad.multipliers[0] = -bad.multipliers[0];
+  CHECK(!volmap::verify_certificate(mesh, kBipyramidLocked, folded, bad));
+  bad = c;
+  bad.multipliers[0] *= 2;
+  CHECK(!volmap::verify_certificate(mesh, kBipyramidLocked, folded, bad));
+  bad = c;
+  bad.simplex = {1};  // a locked vertex
+  CHECK(!volmap::verify_certificate(mesh, kBipyramidLocked, folded, bad));
+  CHECK(!volmap::verify_certificate(mesh, kBipyramidLocked, m.xyz, c));  // the same constraints, unfolded
+
+  // The mapper at fixed connectivity reports it and certifies nothing; the boundary image still
+  // encloses a positive volume, so this is not the any-refinement obstruction.
+  volmap::BoundaryMap map;
+  for (std::uint32_t v = 1; v < 6; ++v) {
+    map.vids.push_back(v);
+    map.xyz.insert(map.xyz.end(), folded.begin() + 3 * v, folded.begin() + 3 * v + 3);
+  }
+  volmap::VolumeMapOptions o;
+  o.allow_refinement = false;
+  o.time_limit_seconds = 5;
+  const auto r = volmap::compute_volume_map(m, map, o);
+  CHECK(!r.certified);
+  CHECK(!r.feasibility.infeasible_with_any_refinement());
+  REQUIRE(r.infeasibility.size() == 1);
+  CHECK(r.infeasibility[0].kind == InfeasibilityKind::EmptyLinkKernel);
+}
+
+TEST_CASE("random bipyramid images: a certificate and an exactly checked kernel point never coexist") {
+  const volmap::TetMeshData m = bipyramid();
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> jitter(-0.9, 0.9);
+  int feasible = 0, certified_empty = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<double> X = m.xyz;
+    for (std::size_t k = 3; k < X.size(); ++k) X[k] += jitter(rng);
+    // Witness: a point strictly inside every link face (exact orient3d), from the kernel LP.
+    std::vector<double> tri;
+    for (std::size_t t = 0; t < m.num_tets(); ++t)
+      for (int k = 0; k < 3; ++k) tri.insert(tri.end(), &X[3 * m.tets[4 * t + k]], &X[3 * m.tets[4 * t + k]] + 3);
+    double q[3];
+    bool witness = volmap::strict_kernel_point(tri, q);
+    if (witness)
+      for (std::size_t t = 0; t < m.num_tets(); ++t)
+        witness = witness && volmap::orient3d(&X[3 * m.tets[4 * t]], &X[3 * m.tets[4 * t + 1]], &X[3 * m.tets[4 * t + 2]], q) > 0;
+    const auto cs = certificates_of(m, kBipyramidLocked, X);
+    for (const auto& c : cs) CHECK(oracle_farkas(m, X, c));
+    CHECK(!(witness && !cs.empty()));
+    feasible += witness;
+    certified_empty += !cs.empty();
+  }
+  // Both outcomes occur, so the test exercises both sides.
+  CHECK(feasible > 20);
+  CHECK(certified_empty > 20);
+}
+
+TEST_CASE("volmap-map --no-refine --json: the folded bipyramid is reported infeasible with its certificate, exit 1") {
+  const volmap::TetMeshData m = bipyramid();
+  const std::filesystem::path dir = volmap_test::scratch_dir("infeasible_bipyramid");
+  volmap::write_medit((dir / "in.mesh").string(), m);
+  {
+    std::ofstream map(dir / "map.txt");
+    map.precision(17);
+    const double folded_n[3] = {2, 0, -0.5};
+    for (std::uint32_t v = 1; v < 6; ++v) {
+      const double* p = v == 4 ? folded_n : &m.xyz[3 * v];
+      map << v << " " << p[0] << " " << p[1] << " " << p[2] << "\n";
+    }
+  }
+  const auto r = vmap_test::run(volmap_test::tool("volmap-map").string() + " " + (dir / "in.mesh").string() + " " +
+                                (dir / "map.txt").string() + " " + (dir / "out.mesh").string() + " --no-refine --json --time-limit 5");
+  CHECK(r.code == 1);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["certified"] == false);
+  REQUIRE(j.contains("infeasible"));
+  CHECK(j["infeasible"]["scope"] == "this-connectivity");
+  REQUIRE(j["infeasible"]["certificates"].size() == 1);
+  const auto& c = j["infeasible"]["certificates"][0];
+  CHECK(c["kind"] == "empty-link-kernel");
+  CHECK(c["simplex"] == std::vector<std::uint32_t>{0});
+  CHECK(c["constraint_tets"].size() == c["multipliers"].size());
+  CHECK(c["constraint_tets"].size() >= 2);
+  std::filesystem::remove_all(dir);
+}
