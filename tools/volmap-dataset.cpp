@@ -265,12 +265,21 @@ int main(int argc, char** argv) {
   app.add_option("--domains", domains_text,
                  "comma-separated domains (cube,tet,pyr,octa,star,sphere,polycube:<cells file|cross7|L3>)");
   app.add_option("--jobs,-j", jobs, "surfaces processed in parallel")->check(CLI::Range(1, 64));
-  auto* quality_option = app.add_option("--quality", opt.quality, "TetGen radius-edge bound (q switch)");
+  auto* quality_option = app.add_option("--quality", opt.quality, "TetGen radius-edge bound (q switch), at least 1")
+                              ->check(volmap_tools::finite_range(1.0, 1e300));
   app.add_flag("--coarse", opt.coarse, "no quality refinement (TetGen without q): most tets touch the boundary")
       ->excludes(quality_option);
-  app.add_option("--max-volume", opt.max_volume, "TetGen maximum tet volume (a switch)");
+  app.add_option("--max-volume", opt.max_volume, "TetGen maximum tet volume (a switch)")
+      ->check(volmap_tools::finite_non_negative());
   app.add_option("--decimate", opt.decimate,
-                 "first decimate surfaces of more than this many triangles to this many (quadric edge collapses)");
+                 "first decimate surfaces of more than this many triangles to this many (quadric edge collapses)")
+      ->check(CLI::Validator(
+          [](std::string& v) {  // 0 = never; a closed surface has at least 4 triangles
+            std::size_t n = 0;
+            return CLI::detail::lexical_cast(v, n) && (n == 0 || n >= 4) ? std::string()
+                                                                          : "must be 0 (never) or at least 4, got '" + v + "'";
+          },
+          "0 or >= 4"));
   app.add_flag("--keep-unrefined", opt.keep_unrefined,
                "also write the mesh before any surface-map split to <group>_unrefined/<name>.mesh");
   app.add_flag("--keep-going", opt.keep_going,
@@ -278,7 +287,7 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     if (group.size() < 2 || group[0] != 'G' || group.find_first_not_of("0123456789", 1) != std::string::npos)
-      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "--group must look like G<number>, got '" + group + "'");
+      throw volmap::Error(volmap::ErrorKind::BadInput, "--group must look like G<number>, got '" + group + "'");
     std::vector<std::string>& domains = opt.domains;
     {
       std::stringstream ss(domains_text);
@@ -293,7 +302,7 @@ int main(int argc, char** argv) {
         } else if (!d.empty()) {
           const auto& known = volmap::volmap_domain_suffixes();
           if (std::find(known.begin(), known.end(), d) == known.end() || d == "pc")
-            throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "unsupported domain '" + d + "'");
+            throw volmap::Error(volmap::ErrorKind::BadInput, "unsupported domain '" + d + "'");
           domains.push_back(d);
         }
     }
@@ -347,11 +356,11 @@ int main(int argc, char** argv) {
                       {"tets", o.tets}, {"failed_domains", failed}});
     }
     volmap::write_text_atomically((fs::path(dataset_dir) / (group + "_log.txt")).string(), log.str());
-    if (json)
-      std::cout << nlohmann::json{{"ok", true}, {"group", group}, {"added", added}, {"surfaces", list}}.dump() << "\n";
+    const int code = added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+    if (json) return volmap_tools::print_json({{"group", group}, {"added", added}, {"surfaces", list}}, code);
     else
       std::cout << group << ": " << added << "/" << surfaces.size() << " surfaces added to " << dataset_dir << " (log "
                 << (fs::path(dataset_dir) / (group + "_log.txt")).string() << ")\n";
-    return added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+    return code;
   }, &json);
 }

@@ -1,7 +1,11 @@
 // volmap-map-check — exact certification of a volume map (volmap-reference.md §6, mapping.md §1):
 //   volmap-map-check <in.mesh> <out.mesh> [--boundary map.txt] [--rationals-in f] [--rationals-out f]
 //                    [--absolute] [--json]
-// Every tet is evaluated in the INPUT tet's vertex order with exact orient3d (VOLMAP-positive = > 0).
+// in.mesh must be a valid VOLMAP input (input_mesh.hpp: what volmap-tetmesh-check accepts), else
+// exit 2 naming it and the problem; the one exception, without --absolute, is an input whose only
+// problem is its orientation (negative tets, e.g. the opposite convention): it gets VOLMAP's relative
+// check, never a certificate (exit 1 at best). --absolute asks for a certificate, so it refuses every
+// invalid input. Every tet is evaluated in the INPUT tet's vertex order with exact orient3d (VOLMAP-positive = > 0).
 // Relative test (VOLMAP's): the output sign must equal the input sign, nonzero. --absolute also
 // requires the output tet (in the output file's own vertex order) to be > 0. Certified only when
 // additionally every input tet is positive and (with --boundary) every boundary vertex sits exactly
@@ -40,14 +44,25 @@ int main(int argc, char** argv) {
   app.add_option("--rationals-in", rat_in_path, "exact input coordinates (VOLMAP num/den file)");
   app.add_option("--rationals-out", rat_out_path, "exact output coordinates (VOLMAP num/den file)");
   app.add_flag("--absolute", absolute, "also require every output tet to be VOLMAP-positive by itself");
-  app.add_option("--max-bad", max_bad, "how many bad tet ids to list (default 20)");
+  app.add_option("--max-bad", max_bad, "how many bad tet ids to list (default 20)")->check(CLI::Range(0, 1000000));
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
     volmap_tools::InputMeshes inputs("volmap-map-check", &json);
     const volmap::TetMeshData in = inputs.read(in_path);
+    // A relative check of an input in the opposite orientation convention is VOLMAP's use case: such
+    // an input passes with a note (and is never certified); any other problem refuses it, and so
+    // does any problem at all when --absolute asks for a certificate.
+    const volmap::InputMeshVerdict verdict =
+        volmap_tools::naming_file(in_path, [&] { return volmap::judge_input_mesh(in); });
+    if (!verdict.valid_up_to_orientation || (absolute && !verdict.valid))
+      throw volmap::Error(volmap::ErrorKind::BadInput, in_path, 0,
+                          "not a valid input tet mesh: " + verdict.reason() +
+                              (verdict.valid_up_to_orientation ? " (--absolute certifies valid inputs only; without it the relative check runs)" : ""));
     const volmap::TetMeshData out = inputs.read(out_path);
+    // The pair is checked first, so a mismatch is blamed on the mapped mesh, not on a later file.
+    volmap_tools::naming_file(out_path + " (against " + in_path + ")", [&] { return volmap::match_connectivity(in, out); });
     volmap::BoundaryMap map;
     if (!boundary_path.empty()) {
       map = volmap::read_boundary_map(boundary_path);
@@ -76,10 +91,8 @@ int main(int argc, char** argv) {
 
     if (json) {
       nlohmann::json j;
-      j["ok"] = true;
       j["certified"] = certified;
       j["valid"] = r.map_valid();
-      j["exit_code"] = certified ? 0 : 1;
       j["mode"] = absolute ? "absolute" : "relative";
       j["arithmetic"] = rational ? "rational" : "double";
       j["num_tets"] = r.num_tets;
@@ -95,6 +108,7 @@ int main(int argc, char** argv) {
       j["num_bad"] = r.num_bad;
       j["first_bad_tets"] = r.first_bad;
       j["input_all_positive"] = r.input_all_positive();
+      if (!verdict.valid) j["input_problem"] = verdict.reason();
       j["input_orientation"] = volmap::describe_orientation(r.input);
       if (!inputs.empty()) j["input_notes"] = inputs.json();
       if (r.boundary_checked) {
@@ -102,7 +116,7 @@ int main(int argc, char** argv) {
         j["first_boundary_mismatches"] = r.first_boundary_mismatches;
       }
       j["seconds"] = {{"read", read_seconds}, {"check", check_seconds}};
-      std::cout << j.dump() << "\n";
+      return volmap_tools::print_json(std::move(j), certified ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed);
     } else {
       std::printf("%zu tets, connectivity: %s, %s arithmetic, %s check\n", r.num_tets, match_name(r.connectivity),
                   rational ? "exact rational" : "exact double", absolute ? "absolute" : "relative");
@@ -123,10 +137,7 @@ int main(int argc, char** argv) {
       if (r.boundary_checked) {
         std::printf("boundary: %zu vertices off their prescribed position\n", r.boundary_mismatches);
       }
-      if (!r.input_all_positive()) {
-        std::printf("note: the input is not VOLMAP-positive, so no map from it can be certified: %s\n",
-                    volmap::describe_orientation(r.input).c_str());
-      }
+      if (!verdict.valid) std::printf("note: %s: %s; no map from it can be certified\n", in_path.c_str(), verdict.reason().c_str());
       if (certified) {
         std::printf("The map is valid (certified, %s check)\n", rational ? "rationals" : "floating point");
       } else if (r.map_valid()) {

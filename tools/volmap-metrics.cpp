@@ -8,8 +8,10 @@
 // where VOLMAP reads uninitialised singular values: by default they get `upper` for every energy;
 // --emulate-volmap-singular-tets reproduces VOLMAP's values (see MetricsOptions in metrics.hpp).
 // Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
-// Exit 0 when computed (also for maps with inverted tets: this tool measures, it does not certify),
-// 2 on bad or mismatched input.
+// in.mesh (and --original) must be valid VOLMAP inputs (input_mesh.hpp), else exit 2 naming the file;
+// every mesh is read through the format dispatcher. The CSV line and the .vtu are written together
+// or not at all. Exit 0 when computed (also for maps with inverted tets: this tool measures, it does
+// not certify), 2 on bad or mismatched input.
 #include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
@@ -37,13 +39,14 @@ int main(int argc, char** argv) {
   std::string in_path, out_path, csv_path, vtu_path, original_path;
   double upper = 100.0;
   bool json = false, emulate_singular = false;
-  app.add_option("in.mesh", in_path, "source tet mesh (VOLMAP-positive; .mesh, .vtk, .vtu, .msh or .ovm)")->required();
-  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu or .msh)")->required();
-  app.add_option("--upper", upper, "energy clamp upper bound (default 100)");
+  app.add_option("in.mesh", in_path, "source tet mesh (.mesh, .vtk, .vtu, .msh or .ovm; a valid VOLMAP input)")->required();
+  app.add_option("out.mesh", out_path, "mapped tet mesh (same vertices and tets; .mesh, .vtk, .vtu, .msh or .ovm)")->required();
+  app.add_option("--upper", upper, "energy clamp upper bound (default 100, at least 6)")
+      ->check(volmap_tools::finite_range(6.0, 1e300));
   app.add_flag("--json", json, "print one JSON object");
   app.add_option("--csv", csv_path, "append VOLMAP's CSV line to this file");
   app.add_option("--original", original_path, "unrefined source mesh: report the size ratio against it");
-  app.add_option("--vtu", vtu_path, "write the output mesh with per-tet cell data (energies, inverted, quality)");
+  app.add_option("--vtu", vtu_path, "write the output mesh with per-tet cell data (energies, inverted, quality) to this .vtu");
   app.add_flag("--emulate-volmap-singular-tets", emulate_singular,
                "compatibility only: for source tets whose edge matrix is singular in doubles (no finite "
                "Jacobian), VOLMAP's metrics reads uninitialised singular values (Eigen 3.4 JacobiSVD returns "
@@ -53,23 +56,33 @@ int main(int argc, char** argv) {
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
+    volmap_tools::RunFiles files;
     volmap_tools::InputMeshes inputs("volmap-metrics", &json);
-    const volmap::TetMeshData in = inputs.read(in_path);
+    for (const std::string* p : {&in_path, &out_path}) volmap::require_tet_mesh_extension(*p);
+    if (!original_path.empty()) volmap::require_tet_mesh_extension(original_path);
+    if (!vtu_path.empty() && volmap::tet_mesh_format(vtu_path) != volmap::TetMeshFormat::Vtu)
+      throw volmap::Error(volmap::ErrorKind::Unsupported, vtu_path, 0, "--vtu writes VTK XML: the path must end in .vtu");
+    files.input(in_path, "input mesh");
+    files.input(out_path, "mapped mesh");
+    files.input(original_path, "--original mesh");
+    volmap::AtomicOutput* csv_out = csv_path.empty() ? nullptr : &files.output(csv_path, "--csv file");  // appended to
+    volmap::AtomicOutput* vtu_out = vtu_path.empty() ? nullptr : &files.output(vtu_path, "--vtu output");
+    const volmap::TetMeshData in = volmap_tools::read_input_tet_mesh(inputs, in_path);
     const volmap::TetMeshData out = inputs.read(out_path);
-    const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    volmap::MetricsOptions options;
-    options.upper = upper;
-    options.keep_per_tet = !vtu_path.empty();
-    options.emulate_volmap_singular_tets = emulate_singular;
-    const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
-                                                              [&] { return volmap::compute_metrics(in, out, options); });
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
-      const volmap::TetMeshData original = inputs.read(original_path);
+      const volmap::TetMeshData original = volmap_tools::read_input_tet_mesh(inputs, original_path);
       original_tets = original.num_tets();
       original_vertices = original.num_vertices();
     }
-    if (!csv_path.empty()) {
+    const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    volmap::MetricsOptions options;
+    options.upper = upper;
+    options.keep_per_tet = vtu_out != nullptr;
+    options.emulate_volmap_singular_tets = emulate_singular;
+    const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
+                                                              [&] { return volmap::compute_metrics(in, out, options); });
+    if (csv_out) {
       // Appended like VOLMAP's log, but atomically: the old content plus the new line is written to a
       // temporary file and renamed over the log (an interrupted run never leaves a torn line).
       std::string content;
@@ -81,9 +94,9 @@ int main(int argc, char** argv) {
         content = ss.str();
         if (!content.empty() && content.back() != '\n') content += '\n';
       }
-      volmap::write_text_atomically(csv_path, content + volmap::format_metrics_csv_line(out_path, r) + "\n");
+      volmap::write_text(*csv_out, content + volmap::format_metrics_csv_line(out_path, r) + "\n");
     }
-    if (!vtu_path.empty()) {
+    if (vtu_out) {
       // Cells in the INPUT's tet order and vertex order (the order the metrics were evaluated in).
       volmap::TetMeshData cells = out;
       cells.tets = in.tets;
@@ -102,14 +115,13 @@ int main(int argc, char** argv) {
       data.push_back({"quality_out", r.per_tet.quality_out});
       data.push_back({"quality_in", r.per_tet.quality_in});
       data.push_back({"scaled_jacobian", r.per_tet.scaled_jacobian_out});
-      volmap::write_vtu(vtu_path, cells, data);
+      volmap::write_vtu(*vtu_out, cells, data);
     }
+    files.commit();
     const double total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (json) {
       nlohmann::json j;
-      j["ok"] = true;
       if (!inputs.empty()) j["input_notes"] = inputs.json();
-      j["exit_code"] = 0;
       j["input"] = in_path;
       j["output"] = out_path;
       j["num_tets"] = r.num_tets;
@@ -142,7 +154,7 @@ int main(int argc, char** argv) {
         j["size_ratio_vertices"] = double(in.num_vertices()) / double(original_vertices);
       }
       j["seconds"] = {{"read", read_seconds}, {"compute", r.seconds}, {"total", total_seconds}};
-      std::cout << j.dump() << "\n";
+      return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
     } else {
       std::cout << volmap::format_metrics_volmap(r);
       std::cout << "Quality 3r/R input (min/max/avg): " << r.quality_in.min << " / " << r.quality_in.max << " / "

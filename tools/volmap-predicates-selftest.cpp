@@ -180,9 +180,9 @@ int main(int argc, char** argv) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         long cases = 0, naive = 0, wrong = 0;
         for (const auto& f : r.families) cases += f.cases, naive += f.naive_wrong, wrong += f.volmap_wrong;
+        const int code = wrong == 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
         if (json) {
           nlohmann::json j;
-          j["ok"] = wrong == 0;
           j["cases"] = cases;
           j["naive_wrong"] = naive;
           j["volmap_wrong"] = wrong;
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
           for (const auto& f : r.families)
             j["families"].push_back(
                 {{"name", f.name}, {"cases", f.cases}, {"naive_wrong", f.naive_wrong}, {"volmap_wrong", f.volmap_wrong}});
-          std::cout << j.dump() << "\n";
+          return volmap_tools::print_json(std::move(j), code);
         } else {
           std::printf("%-84s %8s %12s %12s\n", "hard-case family (oracle: GMP rationals)", "cases", "naive wrong",
                       "volmap wrong");
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
           std::printf("%s: %ld cases in %.2f s; naive double determinant wrong on %ld, volmap wrong on %ld\n",
                       wrong == 0 ? "PASS" : "FAIL", cases, seconds, naive, wrong);
         }
-        return wrong == 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+        return code;
       },
       &json);
 }

@@ -4,11 +4,14 @@
 //              [--method-args "--threads 1 --no-refine"] [--label map-fixed]
 //   volmap-run report <results_dir> [--compare other_results_dir] [-o report.html] [--csv summary.csv]
 //   volmap-run table <results_dir> [--compare other_results_dir] [-o table.md]
-//       issue 6's per-domain Markdown table for every label in the folder(s), also printed
+//       the per-domain Markdown table (certified / growth / time per domain) for every label in the
+//       folder(s), also printed
 //   volmap-run list <dataset_dir> [--groups ..] [--domains ..]          (case ids, one per line)
 //   volmap-run case <dataset_dir> <case_id> --method m --out dir [--timeout s]
 //       one case, recorded in <out>/records/<group>/<name>_<dom>.json (used by the Snakemake workflow)
 // Results: <out>/results.jsonl, one JSON object per case (see lib benchmark_runner.hpp).
+// --json (before or after a subcommand) prints one JSON object instead of text. Exit 0 means the
+// runs were made and recorded (whether each case was certified is in its record), 2 bad input.
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -37,6 +40,7 @@ extern "C" void on_interrupt(int sig) {
     const int p = pid.load();
     if (p > 0) kill(-p, SIGKILL);
   }
+  volmap::remove_registered_temp_files();
   _exit(128 + sig);
 }
 
@@ -70,7 +74,9 @@ std::vector<volmap::MethodRun> load_runs(const std::string& results_dir, const s
     const auto file = fs::path(dir) / "results.jsonl";
     if (!fs::is_regular_file(file)) throw volmap::Error(volmap::ErrorKind::Io, file.string(), 0, "no results file");
     std::vector<volmap::MethodRun> found;
-    for (auto& r : volmap::read_results(file.string())) {
+    const auto records = volmap::read_results(file.string());
+    if (records.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, file.string(), 0, "holds no records");
+    for (auto r : records) {
       const std::string label = compare_dir.empty() ? r.label : r.label + " (" + fs::path(dir).filename().string() + ")";
       auto it = std::find_if(found.begin(), found.end(), [&](const auto& m) { return m.label == label; });
       if (it == found.end()) it = found.insert(found.end(), volmap::MethodRun{label, {}});
@@ -111,7 +117,7 @@ int main(int argc, char** argv) {
   app.add_option("--domains", domains, "comma-separated domains among cube,tet,pyr,octa,star,sphere,pc (default: all)");
   app.add_option("--meshes", meshes, "comma-separated mesh names, e.g. bone,duck (default: all)");
   app.add_option("--jobs,-j", jobs, "parallel cases")->check(CLI::Range(1, kMaxJobs));
-  app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(CLI::NonNegativeNumber);
+  app.add_option("--timeout", timeout, "seconds per candidate run (0 = none)")->check(volmap_tools::finite_non_negative());
   app.add_option("--out", out, "results folder (results.jsonl + per-case logs)");
   app.add_flag("--resume", resume, "skip cases already recorded in the results folder for this label");
   app.add_flag("--keep-outputs", keep, "keep every written mesh (default: only logs and JSON)");
@@ -123,7 +129,7 @@ int main(int argc, char** argv) {
   report->add_option("--compare", compare_dir, "a second results folder shown side by side");
   report->add_option("-o,--output", html_path, "HTML report path (default <results_dir>/report.html)");
   report->add_option("--csv", csv_path, "CSV summary path (default <results_dir>/summary.csv)");
-  auto* table = app.add_subcommand("table", "issue 6's per-domain table (Markdown) for every label in a results folder");
+  auto* table = app.add_subcommand("table", "the per-domain table (Markdown) for every label in a results folder");
   std::string table_dir, table_compare, table_path;
   table->add_option("results_dir", table_dir, "a results folder of volmap-run")->required();
   table->add_option("--compare", table_compare, "a second results folder, its labels shown beside");
@@ -141,32 +147,52 @@ int main(int argc, char** argv) {
   one->add_option("case_id", case_id, "<group>/<name>_<domain>, as printed by `list`")->required();
   one->add_option("--method", method, "tutte3d, map, tlc, or a candidate executable")->required();
   one->add_option("--out", out, "results folder");
-  one->add_option("--timeout", timeout, "seconds for the candidate (0 = none)")->check(CLI::NonNegativeNumber);
+  one->add_option("--timeout", timeout, "seconds for the candidate (0 = none)")->check(volmap_tools::finite_non_negative());
   one->add_flag("--keep-outputs", keep, "keep the written meshes");
+  for (auto* sub : {report, table, list, one}) sub->add_flag("--json", json, "print one JSON object instead of text");
   app.require_subcommand(0, 1);
 
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     if (table->parsed()) {
-      const auto runs = load_runs(table_dir, table_compare);
       if (table_path.empty()) table_path = (fs::path(table_dir) / "table.md").string();
+      volmap_tools::RunFiles files;
+      files.input((fs::path(table_dir) / "results.jsonl").string(), "results file");
+      if (!table_compare.empty()) files.input((fs::path(table_compare) / "results.jsonl").string(), "--compare results file");
+      volmap::AtomicOutput& out = files.output(table_path, "table");
+      const auto runs = load_runs(table_dir, table_compare);
       const std::string md = volmap::mapping_table_markdown(runs);
-      volmap::write_text_atomically(table_path, md);
+      volmap::write_text(out, md);
+      files.commit();
+      if (json)
+        return volmap_tools::print_json({{"table", fs::absolute(table_path).string()}, {"markdown", md}}, volmap_tools::kExitOk);
       std::cout << md << "\ntable: " << fs::absolute(table_path).string() << "\n";
       return volmap_tools::kExitOk;
     }
     if (report->parsed()) {
-      const auto runs = load_runs(results_dir, compare_dir);
       if (html_path.empty()) html_path = (fs::path(results_dir) / "report.html").string();
       if (csv_path.empty()) csv_path = (fs::path(results_dir) / "summary.csv").string();
-      volmap::write_text_atomically(html_path, volmap::render_report_html(runs, "volmap benchmark report"));
-      volmap::write_text_atomically(csv_path, volmap::summary_csv(runs));
+      volmap_tools::RunFiles files;
+      files.input((fs::path(results_dir) / "results.jsonl").string(), "results file");
+      if (!compare_dir.empty()) files.input((fs::path(compare_dir) / "results.jsonl").string(), "--compare results file");
+      volmap::AtomicOutput& html = files.output(html_path, "HTML report");
+      volmap::AtomicOutput& csv = files.output(csv_path, "CSV summary");
+      const auto runs = load_runs(results_dir, compare_dir);
+      volmap::write_text(html, volmap::render_report_html(runs, "volmap benchmark report"));
+      volmap::write_text(csv, volmap::summary_csv(runs));
+      files.commit();
+      if (json)
+        return volmap_tools::print_json({{"report", fs::absolute(html_path).string()}, {"summary", fs::absolute(csv_path).string()},
+                                         {"runs", runs.size()}},
+                                        volmap_tools::kExitOk);
       std::cout << "report: " << fs::absolute(html_path).string() << "\nsummary: " << fs::absolute(csv_path).string() << "\n";
       return volmap_tools::kExitOk;
     }
     if (list->parsed()) {
+      nlohmann::json ids = nlohmann::json::array();
       for (const auto& c : volmap::discover_cases(list_dataset, split_list(groups), split_list(domains), split_list(meshes)))
-        std::cout << c.id() << "\n";
-      return volmap_tools::kExitOk;
+        if (json) ids.push_back(c.id());
+        else std::cout << c.id() << "\n";
+      return json ? volmap_tools::print_json({{"cases", ids}}, volmap_tools::kExitOk) : volmap_tools::kExitOk;
     }
     if (one->parsed()) {
       const auto all = volmap::discover_cases(case_dataset);
@@ -183,11 +209,14 @@ int main(int argc, char** argv) {
       const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
       fs::create_directories(path.parent_path());
       volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
+      if (json)
+        return volmap_tools::print_json({{"case", case_id}, {"certified", record.certified}, {"record", path.string()}},
+                                        volmap_tools::kExitOk);
       std::cout << case_id << ": " << (record.certified ? "certified" : "not certified") << "\n";
       return volmap_tools::kExitOk;
     }
     if (dataset.empty() || method.empty())
-      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "usage: volmap-run <dataset_dir> --method <name|exe> (see --help)");
+      throw volmap::Error(volmap::ErrorKind::BadInput, "usage: volmap-run <dataset_dir> --method <name|exe> (see --help)");
 
     const auto cases = volmap::discover_cases(dataset, split_list(groups), split_list(domains), split_list(meshes));
     if (cases.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, dataset, 0, "no cases found in the VOLMAP layout");
@@ -232,10 +261,10 @@ int main(int argc, char** argv) {
         certified += r.certified;
       }
     if (json) {
-      nlohmann::json j{{"ok", true},       {"method", spec.name},        {"label", spec.label},   {"cases", cases.size()},
-                       {"ran", records.size()}, {"recorded", total},    {"certified", certified},
-                       {"results", (fs::path(out) / "results.jsonl").string()}};
-      std::cout << j.dump() << "\n";
+      return volmap_tools::print_json({{"method", spec.name}, {"label", spec.label}, {"cases", cases.size()},
+                                       {"ran", records.size()}, {"recorded", total}, {"certified", certified},
+                                       {"results", (fs::path(out) / "results.jsonl").string()}},
+                                      volmap_tools::kExitOk);
     } else {
       std::cout << spec.label << ": " << certified << "/" << total << " certified; results in "
                 << (fs::path(out) / "results.jsonl").string() << "\n";

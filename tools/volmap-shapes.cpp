@@ -32,16 +32,26 @@ int main(int argc, char** argv) {
       }
     }
     if (selected.empty()) selected = thin ? volmap::thin_shape_names() : volmap::builtin_shape_names();
-    std::filesystem::create_directories(out_dir);
+    // Every surface is made first (unknown names refused before anything is created), then all files
+    // are written together (none on any error).
+    std::vector<volmap::SurfaceData> surfaces;
+    for (const auto& name : selected) surfaces.push_back(volmap::make_builtin_shape(name, subdivisions));
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (!std::filesystem::is_directory(out_dir))
+      throw volmap::Error(volmap::ErrorKind::Io, out_dir, 0,
+                          "cannot create the output folder" + (ec ? ": " + ec.message() : std::string()));
+    volmap_tools::RunFiles files;
     nlohmann::json written = nlohmann::json::array();
-    for (const auto& name : selected) {
-      const auto surface = volmap::make_builtin_shape(name, subdivisions);
-      const auto path = (std::filesystem::path(out_dir) / (name + "." + format)).string();
-      volmap::write_surface(path, surface);
-      written.push_back({{"name", name}, {"path", path}, {"triangles", surface.tris.size() / 3}});
-      if (!json) std::cout << path << " (" << surface.tris.size() / 3 << " triangles)\n";
+    for (std::size_t k = 0; k < selected.size(); ++k) {
+      const auto path = (std::filesystem::path(out_dir) / (selected[k] + "." + format)).string();
+      volmap::write_surface(files.output(path, "surface " + selected[k]), surfaces[k]);
+      written.push_back({{"name", selected[k]}, {"path", path}, {"triangles", surfaces[k].num_triangles()}});
     }
-    if (json) std::cout << nlohmann::json{{"ok", true}, {"surfaces", written}}.dump() << "\n";
+    files.commit();
+    if (json) return volmap_tools::print_json({{"surfaces", written}}, volmap_tools::kExitOk);
+    for (const auto& w : written)
+      std::cout << w["path"].get<std::string>() << " (" << w["triangles"].get<std::size_t>() << " triangles)\n";
     return volmap_tools::kExitOk;
   }, &json);
 }

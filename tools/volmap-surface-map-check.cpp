@@ -1,5 +1,6 @@
 // volmap-surface-map-check <in.mesh> <map.txt> [--domain name|polycube:<cells>|file] [--cell-size S] [--json]
-// The exact surface-map sanity check (see <volmap/surface_map_check.hpp>). Exit 0 = valid,
+// The exact surface-map sanity check (see <volmap/surface/surface_map_check.hpp>) of a valid VOLMAP
+// input mesh (input_mesh.hpp; else exit 2 naming it). Exit 0 = valid,
 // 1 = check failed (inverted/degenerate cones, coverage, off-domain points, corners), 2 = bad input.
 #include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
@@ -26,9 +27,10 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain_arg,
                  "cube|tet|pyr|octa|star|sphere, polycube:<cells file|cross7|L3> or a custom domain file: also "
                  "check that points lie on the domain and corners hit their targets exactly");
-  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)");
-  app.add_option("--tolerance", tolerance, "max distance from the domain boundary (default: 1e-9 x domain "
-                                           "size, 1e-6 for maps written with 6 decimals)");
+  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)")->check(volmap_tools::finite_positive());
+  app.add_option("--tolerance", tolerance, "max distance from the domain boundary (default 0: 1e-9 x domain "
+                                           "size, 1e-6 for maps written with 6 decimals)")
+      ->check(volmap_tools::finite_non_negative());
   app.add_flag("--accept-either-sign", either_sign, "accept all-negative cones too (VOLMAP's behaviour)");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
@@ -38,9 +40,9 @@ int main(int argc, char** argv) {
     if (domain_arg.rfind(volmap::kPolycubePrefix, 0) == 0)
       domain = volmap::polycube_domain(domain_arg.substr(volmap::kPolycubePrefix.size()), cell_size);
     else if (!domain_arg.empty() && !sphere)
-      domain = volmap::domain_from_name_or_file(domain_arg);
+      domain = volmap_tools::domain_from_name_or_file(domain_arg);
     volmap_tools::InputMeshes inputs("volmap-surface-map-check", &json);
-    const volmap::TetMeshData mesh = inputs.read(mesh_path);
+    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     const volmap::BoundaryMap map = volmap::read_boundary_map(map_path);
     volmap::SurfaceMapCheckOptions opt;
     opt.position_tolerance = tolerance;
@@ -52,10 +54,9 @@ int main(int argc, char** argv) {
     const auto r = volmap_tools::naming_file(
         map_path, [&] { return volmap::check_surface_map(mesh, map, domain ? &*domain : nullptr, opt); });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const int code = r.ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
     if (json) {
-      nlohmann::json j{{"ok", r.ok},
-                       {"exit_code", r.ok ? 0 : 1},
-                       {"boundary_vertices", r.boundary_vertices},
+      nlohmann::json j{{"boundary_vertices", r.boundary_vertices},
                        {"boundary_triangles", r.boundary_triangles},
                        {"map_entries", r.map_entries},
                        {"missing", r.missing},
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
       }
       if (!r.ok) j["reason"] = r.reason;
       if (!inputs.empty()) j["input_notes"] = inputs.json();
-      std::cout << j.dump() << "\n";
+      return volmap_tools::print_json(std::move(j), code);
     } else {
       std::cout << "boundary: " << r.boundary_vertices << " vertices, " << r.boundary_triangles << " triangles; map: "
                 << r.map_entries << " entries\n";
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
                   << r.corners_exact << "/" << r.corners_expected << "\n";
       std::cout << (r.ok ? "Check result: SUCCESS" : "Check result: FAIL (" + r.reason + ")") << "\n";
     }
-    if (!r.ok && !json) std::cerr << "volmap-surface-map-check: " << map_path << ": " << r.reason << "\n";
-    return r.ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+    if (!r.ok) std::cerr << "volmap-surface-map-check: " << map_path << ": " << r.reason << "\n";
+    return code;
   }, &json);
 }

@@ -2,12 +2,13 @@
 //                    [--domain file] [--cells <cells file|cross7|L3>] [--cell-size S]
 //                    [--refined out.mesh] [--volmap-precision] [--json]
 // `polycube:<cells>` is the same as `polycube --cells <cells>` (<volmap/surface/polycube.hpp>).
-// Maps the boundary of a genus-0 tet mesh onto a base domain (see <volmap/surface_map.hpp>), checks
-// the map exactly and only then writes it (%.17g, sorted by vid) and, when edges were split, the
-// refined tet mesh the map refers to (default name: <out_map without extension>_in.mesh).
-// --volmap-precision writes VOLMAP's 6 decimals instead; the rounded map is read back from disk and
-// checked exactly again (same check, tolerance for 6-decimal points) and refused (exit 1, nothing
-// written) when rounding breaks it.
+// Maps the boundary of a genus-0 tet mesh (a valid VOLMAP input: input_mesh.hpp) onto a base domain
+// (see <volmap/surface/surface_map.hpp>), checks the map exactly and only then writes it (shortest
+// round-trip doubles, sorted by vid) and, when edges were split, the refined tet mesh the map refers
+// to (default name: <out_map without extension>_in.mesh; format by extension), both together.
+// --volmap-precision writes VOLMAP's 6 decimals instead; the rounded map is read back from the
+// written file and checked exactly again (same check, tolerance for 6-decimal points) and refused
+// (exit 1, nothing written) when rounding breaks it.
 // Exit 0 = map written; 1 = mapping or verification failed (nothing written); 2 = bad input.
 #include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
@@ -32,92 +33,89 @@ int main(int argc, char** argv) {
                  "cube, tet, pyr, octa, star, sphere, custom (with --domain) or polycube (with --cells; or "
                  "polycube:<cells>)")
       ->required();
-  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, VOLMAP-positive)")->required();
+  app.add_option("mesh", mesh_path, "input tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "output boundary map")->required();
   app.add_option("--domain", domain_file, "custom domain file (n / nm / a lines)");
   app.add_option("--cells", cells, "polycube cells: a file of 'i j k' lines, or cross7 / L3");
-  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)");
-  app.add_option("--refined", refined_path, "where to write the refined tet mesh when edges are split");
+  app.add_option("--cell-size", cell_size, "polycube cell edge length (default 100)")->check(volmap_tools::finite_positive());
+  app.add_option("--refined", refined_path,
+                 "where to write the refined tet mesh (.mesh/.vtk/.vtu/.msh) when edges are split (default "
+                 "<map without extension>_in.mesh)");
   app.add_flag("--volmap-precision", volmap_precision,
                "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
     const bool sphere = domain_name == "sphere" || domain_name == "SPHERE";
-    volmap::Domain domain;
     if (domain_name.rfind(volmap::kPolycubePrefix, 0) == 0) {
-      if (!cells.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "give the polycube cells once");
+      if (!cells.empty()) throw volmap::Error(volmap::ErrorKind::BadInput, "give the polycube cells once");
       cells = domain_name.substr(volmap::kPolycubePrefix.size());
       domain_name = "polycube";
     }
-    if (!cells.empty() && domain_name != "polycube")
-      throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "--cells is for the polycube domain");
-    if (domain_name == "polycube") {
-      if (cells.empty())
-        throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "polycube domain needs --cells <file|cross7|L3>");
-      domain = volmap::polycube_domain(cells, cell_size);
-    } else if (domain_name == "custom" || domain_name == "CUSTOM") {
-      if (domain_file.empty())
-        throw volmap::Error(volmap::ErrorKind::BadInput, "", 0, "custom domain needs --domain <file>");
-      domain = volmap::read_custom_domain(domain_file);
-    } else if (sphere) {
-      domain = volmap::builtin_domain("cube");  // star-shaped source map, projected afterwards
-    } else {
-      domain = volmap::builtin_domain(domain_name);
+    const bool polycube = domain_name == "polycube";
+    if (!cells.empty() && !polycube) throw volmap::Error(volmap::ErrorKind::BadInput, "--cells is for the polycube domain");
+    if (polycube && cells.empty())
+      throw volmap::Error(volmap::ErrorKind::BadInput, "polycube domain needs --cells <file|cross7|L3>");
+    const bool custom = domain_name == "custom" || domain_name == "CUSTOM";
+    if (custom && domain_file.empty())
+      throw volmap::Error(volmap::ErrorKind::BadInput, "custom domain needs --domain <file>");
+    if (!custom && !domain_file.empty())
+      throw volmap::Error(volmap::ErrorKind::BadInput, domain_file, 0, "--domain is for the custom domain only (got '" + domain_name + "')");
+    const volmap::Domain domain = polycube ? volmap::polycube_domain(cells, cell_size)
+                                  : custom ? volmap::parse_custom_domain(volmap::read_text_file(domain_file, 1 << 16), domain_file)
+                                  : sphere ? volmap::builtin_domain("cube")  // star-shaped source map, projected afterwards
+                                           : volmap::builtin_domain(domain_name);
+    // The refined mesh exists only when the mapper splits edges, but its path is prepared (and
+    // checked) now like every output, and dropped when nothing was split.
+    std::string refined_out = refined_path;
+    if (refined_out.empty()) {
+      const auto dot = map_path.rfind('.');
+      const auto slash = map_path.rfind('/');
+      refined_out = (dot != std::string::npos && (slash == std::string::npos || dot > slash) ? map_path.substr(0, dot) : map_path) +
+                    "_in.mesh";
     }
+    volmap_tools::RunFiles files;
     volmap_tools::InputMeshes inputs("volmap-surface-map", &json);
-    const volmap::TetMeshData mesh = inputs.read(mesh_path);
+    volmap::require_tet_mesh_extension(mesh_path);
+    files.input(mesh_path, "input mesh");
+    files.input(domain_file, "--domain file");
+    if (polycube && cells != "cross7" && cells != "L3") files.input(cells, "--cells file");
+    volmap::AtomicOutput& map_out = files.output(map_path, "output map");
+    volmap::AtomicOutput& refined = files.tet_mesh_output(refined_out, "refined mesh");
+
+    const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     volmap::SurfaceMapResult r =
         volmap_tools::naming_file(mesh_path, [&] { return volmap::map_surface_to_domain(mesh, domain); });
     if (sphere)
       r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},
                                     volmap::kSphereRadius);
     if (volmap_precision) {
-      // Write the rounded map beside the output, read it back and check exactly what was written.
-      const std::string tmp = map_path + ".volmap6.tmp";
-      volmap::write_boundary_map(tmp, r.map, volmap::MapPrecision::Volmap6);
-      volmap::SurfaceMapCheckResult c;
-      try {
-        const volmap::BoundaryMap written = volmap::read_boundary_map(tmp);
-        volmap::SurfaceMapCheckOptions opt;
-        if (sphere) {  // the same criterion as volmap-surface-map-check --domain sphere
-          opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
-          opt.sphere_radius = volmap::kSphereRadius;
-        }
-        c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
-      } catch (...) {
-        std::remove(tmp.c_str());
-        throw;
+      // Write the rounded map, read the written file back and check exactly what was written.
+      volmap::write_boundary_map(map_out, r.map, volmap::MapPrecision::Volmap6);
+      map_out.finish();
+      const volmap::BoundaryMap written = volmap::read_boundary_map(map_out.temporary_path());
+      volmap::SurfaceMapCheckOptions opt;
+      if (sphere) {
+        // the same criterion as volmap-surface-map-check --domain sphere
+        opt.sphere_centre = {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]};
+        opt.sphere_radius = volmap::kSphereRadius;
       }
-      if (!c.ok) {
-        std::remove(tmp.c_str());
+      const volmap::SurfaceMapCheckResult c = volmap::check_surface_map(r.mesh, written, sphere ? nullptr : &domain, opt);
+      if (!c.ok)
         throw volmap::Error(volmap::ErrorKind::Failed, map_path, 0,
                             "the map rounded to 6 decimals fails the exact check: " + c.reason);
-      }
       r.check = c;
-      if (std::rename(tmp.c_str(), map_path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw volmap::Error(volmap::ErrorKind::Io, map_path, 0, "cannot rename the checked map into place");
-      }
+    } else {
+      volmap::write_boundary_map(map_out, r.map, volmap::MapPrecision::Full);
     }
-    std::string refined_out;
-    if (r.added_vertices > 0) {
-      refined_out = refined_path;
-      if (refined_out.empty()) {
-        const auto dot = map_path.rfind('.');
-        const auto slash = map_path.rfind('/');
-        refined_out = (dot != std::string::npos && (slash == std::string::npos || dot > slash) ? map_path.substr(0, dot)
-                                                                                                : map_path) +
-                      "_in.mesh";
-      }
-      volmap::write_medit(refined_out, r.mesh);
-    }
-    if (!volmap_precision) volmap::write_boundary_map(map_path, r.map, volmap::MapPrecision::Full);
+    if (r.added_vertices > 0)
+      volmap::write_tet_mesh(refined, r.mesh);
+    else
+      refined.drop(), refined_out.clear();
+    files.commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (json) {
-      nlohmann::json j{{"ok", true},
-                       {"exit_code", 0},
-                       {"domain", sphere ? std::string("sphere") : domain.name},
+      nlohmann::json j{{"domain", sphere ? std::string("sphere") : domain.name},
                        {"map", map_path},
                        {"refined_mesh", refined_out.empty() ? nlohmann::json(nullptr) : nlohmann::json(refined_out)},
                        {"input_vertices", mesh.num_vertices()},
@@ -133,13 +131,12 @@ int main(int argc, char** argv) {
                        {"precision", volmap_precision ? "volmap6" : "full"},
                        {"seconds", seconds}};
       if (!inputs.empty()) j["input_notes"] = inputs.json();
-      std::cout << j.dump() << "\n";
-    } else {
-      std::cout << "domain " << (sphere ? "sphere" : domain.name) << ": " << r.map.size() << " boundary vertices, +"
-                << r.added_vertices << " vertices, exact check " << r.check.positive << "/" << r.check.boundary_triangles
-                << " positive; wrote " << map_path << (refined_out.empty() ? "" : " and " + refined_out) << " ("
-                << seconds << " s)\n";
+      return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
     }
+    std::cout << "domain " << (sphere ? "sphere" : domain.name) << ": " << r.map.size() << " boundary vertices, +"
+              << r.added_vertices << " vertices, exact check " << r.check.positive << "/" << r.check.boundary_triangles
+              << " positive; wrote " << map_path << (refined_out.empty() ? "" : " and " + refined_out) << " ("
+              << seconds << " s)\n";
     return volmap_tools::kExitOk;
   }, &json);
 }

@@ -5,13 +5,16 @@
 // which convention the tets are in (describe_orientation): Gmsh and OpenVolumeMesh files, read as
 // they are, are in the opposite one. Reader notes (skipped Gmsh elements, dropped nodes) go to stderr,
 // or under "input_notes" with --json.
-// --fix out: when the mesh is coherently opposite (no tet with orient3d > 0), writes it with local
-// vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex order, tet order and
-// labels kept), re-checks the written mesh and reports it; refuses (exit 1, nothing written) when
-// the signs are mixed. A mesh already in the VOLMAP convention is written unchanged.
+// --fix out (.mesh/.vtk/.vtu/.msh): when the mesh is coherently opposite (no tet with orient3d > 0),
+// writes it with local vertices 0 and 1 swapped in every tet (so every orient3d flips sign; vertex
+// order, tet order and labels kept), checks the flipped mesh (the file holds exactly these numbers:
+// writers round-trip bit-exactly) and writes it only when it passes every check; refuses (exit 1,
+// nothing written) when the signs are mixed or another check still fails. A mesh already in the
+// VOLMAP convention is written unchanged (when it passes).
 // A surface (.off/.obj/.stl/.ply, read by read_surface) gets the five surface checks instead
 // (check_surface: no orientation/volume).
-// --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order).
+// --log appends VOLMAP's CSV line `name; o; v; g; c; m; b; i` (1/0 per check, same column order; tet
+// meshes only). The log and the fixed mesh are written together or not at all.
 // Exit codes: 0 all checks pass (after the fix, when one was written), 1 a check failed or --fix
 // refused, 2 usage or bad input (one-line reason on stderr).
 #include "support/input_mesh.hpp"
@@ -95,6 +98,20 @@ void print_checks(const std::vector<volmap::CheckItem>& checks) {
     std::printf("%-19s %s  %s\n", c.key.c_str(), c.passed ? "PASSED" : "FAILED", c.detail.c_str());
 }
 
+// The current content of a --log file ("" when it does not exist yet), ending with a newline.
+std::string read_log(const std::string& path) {
+  std::string content;
+  if (!std::filesystem::exists(path)) return content;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw volmap::Error(volmap::ErrorKind::Io, path, 0, "cannot read the log to append to");
+  char buffer[65536];
+  std::size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) content.append(buffer, n);
+  std::fclose(f);
+  if (!content.empty() && content.back() != '\n') content += '\n';
+  return content;
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -122,44 +139,59 @@ int main(int argc, char** argv) {
       app, argc, argv,
       [&]() -> int {
         const auto t0 = std::chrono::steady_clock::now();
-        const std::string ext = lower_extension(input);
-        if (is_surface_extension(ext)) {
-          if (!fix_output.empty())
-            throw volmap::Error(volmap::ErrorKind::Unsupported, input, 0, "--fix applies to tet meshes only");
+        const bool surface_input = is_surface_extension(lower_extension(input));
+        if (surface_input && (!fix_output.empty() || !log_csv.empty()))
+          throw volmap::Error(volmap::ErrorKind::Unsupported, input, 0, "--fix and --log apply to tet meshes only");
+        if (!surface_input) volmap::require_tet_mesh_extension(input);
+        volmap_tools::RunFiles files;
+        files.input(input, "input");
+        volmap::AtomicOutput* fix_out = fix_output.empty() ? nullptr : &files.tet_mesh_output(fix_output, "--fix output");
+        volmap::AtomicOutput* log_out = log_csv.empty() ? nullptr : &files.output(log_csv, "--log file");  // appended to
+        std::string log_line = std::filesystem::path(input).filename().string();
+        auto finish = [&](bool ok, Json j) {
+          if (log_out) volmap::write_text(*log_out, read_log(log_csv) + log_line + "\n");
+          files.commit();
+          return json ? volmap_tools::print_json(std::move(j), ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed)
+                      : (ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed);
+        };
+
+        if (surface_input) {
           const volmap::SurfaceData surface = volmap::read_surface(input);
           const auto r = volmap::check_surface(surface);
           const bool ok = r.all_passed();
+          Json j;
           if (json) {
             const auto& st = r.topology;
-            Json j{{"ok", ok}, {"exit_code", ok ? 0 : 1}, {"input", input}, {"kind", "surface"},
-                   {"all_passed", ok}, {"vertices", st.num_vertices}, {"triangles", st.num_triangles},
-                   {"checks", checks_json(r.checks)},
-                   {"topology", {{"euler", st.euler}, {"genus", st.genus_defined ? Json(st.genus) : Json(nullptr)},
-                                 {"components", st.num_components}, {"edges", st.num_edges},
-                                 {"border_edges", st.num_border_edges}, {"overshared_edges", st.num_overshared_edges},
-                                 {"nonmanifold_vertices", st.num_nonmanifold_vertices},
-                                 {"inconsistent_edges", st.num_inconsistent_edges}}},
-                   {"self_intersections", self_intersections_json(r.self_intersections)},
-                   {"time_ms", ms_since(t0)}};
-            std::cout << j.dump() << "\n";
+            j = Json{{"input", input}, {"kind", "surface"},
+                     {"all_passed", ok}, {"vertices", st.num_vertices}, {"triangles", st.num_triangles},
+                     {"checks", checks_json(r.checks)},
+                     {"topology", {{"euler", st.euler}, {"genus", st.genus_defined ? Json(st.genus) : Json(nullptr)},
+                                   {"components", st.num_components}, {"edges", st.num_edges},
+                                   {"border_edges", st.num_border_edges}, {"overshared_edges", st.num_overshared_edges},
+                                   {"nonmanifold_vertices", st.num_nonmanifold_vertices},
+                                   {"inconsistent_edges", st.num_inconsistent_edges}}},
+                     {"self_intersections", self_intersections_json(r.self_intersections)},
+                     {"time_ms", ms_since(t0)}};
           } else {
             std::printf("%s: surface, %zu vertices, %zu triangles\n", input.c_str(), r.topology.num_vertices,
                         r.topology.num_triangles);
             print_checks(r.checks);
             std::printf("%s\n", ok ? "all surface checks PASSED" : "surface checks FAILED");
           }
-          return ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+          return finish(ok, std::move(j));
         }
 
         volmap_tools::InputMeshes inputs("volmap-tetmesh-check", &json);
         volmap::TetMeshData mesh = inputs.read(input);
         const double read_ms = ms_since(t0);
-        const auto report = volmap::check_tet_mesh(mesh);
+        const auto report = volmap_tools::naming_file(input, [&] { return volmap::check_tet_mesh(mesh); });
         const double check_ms = ms_since(t0) - read_ms;
         bool ok = report.all_passed();
+        // VOLMAP's column order: orientation, volume, genus, components, manifold, borders, intersections.
+        for (const char* key : {"orientation", "volume", "genus", "components", "manifold", "closed", "self_intersections"})
+          log_line += std::string("; ") + (report.check(key).passed ? "1" : "0");
         Json j;
-        if (json) j = Json{{"input", input}, {"kind", "tet_mesh"}};
-        if (json) j["report"] = tet_report_json(report);
+        if (json) j = Json{{"input", input}, {"kind", "tet_mesh"}, {"report", tet_report_json(report)}};
         if (json && !inputs.empty()) j["input_notes"] = inputs.json();
         if (!json) {
           std::printf("%s: %zu vertices, %zu tets\n", input.c_str(), report.num_vertices, report.num_tets);
@@ -167,63 +199,48 @@ int main(int argc, char** argv) {
           std::printf("%s%s\n", fix_output.empty() ? "" : "input: ", ok ? "all checks PASSED" : "checks FAILED");
         }
 
-        if (!log_csv.empty()) {
-          // VOLMAP's column order: orientation, volume, genus, components, manifold, borders, intersections.
-          std::string line = std::filesystem::path(input).filename().string();
-          for (const char* key : {"orientation", "volume", "genus", "components", "manifold", "closed", "self_intersections"})
-            line += std::string("; ") + (report.check(key).passed ? "1" : "0");
-          std::string content;
-          if (std::FILE* f = std::fopen(log_csv.c_str(), "rb")) {
-            char buffer[65536];
-            std::size_t n;
-            while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) content.append(buffer, n);
-            std::fclose(f);
-            if (!content.empty() && content.back() != '\n') content += '\n';
-          }
-          volmap::write_text_atomically(log_csv, content + line + "\n");
-        }
-
-        if (!fix_output.empty()) {
+        if (fix_out) {
           Json fix;
           fix["output"] = fix_output;
           if (report.orientation == volmap::OrientationClass::Mixed ||
               report.orientation == volmap::OrientationClass::Empty) {
             const std::string why = volmap::describe_orientation(report.signs, "--fix");
+            fix_out->drop();
             fix["written"] = false;
             fix["reason"] = "refused: " + why;
             if (!json) std::printf("fix: refused, %s; nothing written\n", why.c_str());
             ok = false;
           } else {
+            // The flipped mesh is checked before it is written (written files round-trip exactly) and
+            // written only when it passes every check: a "fixed" file is a valid input.
             const bool flip = report.orientation == volmap::OrientationClass::CoherentlyOpposite;
             if (flip) volmap::flip_all_tets(mesh);
-            volmap::write_tet_mesh(fix_output, mesh);
-            // Re-read what was written and check it: the verdict is on the numbers on disk.
-            const auto written = volmap::read_tet_mesh(fix_output);
-            const auto after = volmap::check_tet_mesh(written);
-            fix["written"] = true;
+            const auto after = volmap::check_tet_mesh(mesh);
+            ok = after.all_passed();
+            if (ok)
+              volmap::write_tet_mesh(*fix_out, mesh);
+            else
+              fix_out->drop();
+            fix["written"] = ok;
             fix["flipped_tets"] = flip ? report.num_tets : 0;
             fix["report"] = tet_report_json(after);
-            ok = after.all_passed();
+            if (!ok) fix["reason"] = "refused: the flipped mesh still fails a check";
             if (!json) {
-              if (flip)
-                std::printf("fix: wrote %s with v0<->v1 swapped in all %zu tets; re-check of the written file:\n",
-                            fix_output.c_str(), report.num_tets);
-              else
-                std::printf("fix: already in the VOLMAP convention, wrote %s unchanged; re-check:\n", fix_output.c_str());
+              std::printf("fix: %s with v0<->v1 swapped in all %zu tets; check of that mesh:\n",
+                          flip ? "the mesh" : "the mesh (already in the VOLMAP convention, not flipped)",
+                          flip ? report.num_tets : std::size_t(0));
               print_checks(after.checks);
-              std::printf("%s\n", ok ? "fixed mesh: all checks PASSED" : "fixed mesh: checks FAILED");
+              std::printf("%s\n", ok ? ("fixed mesh: all checks PASSED, wrote " + fix_output).c_str()
+                                      : "fixed mesh: checks FAILED; nothing written");
             }
           }
           if (json) j["fix"] = fix;
         }
         if (json) {
-          j["ok"] = ok;
-          j["exit_code"] = ok ? 0 : 1;
           j["read_ms"] = read_ms;
           j["check_ms"] = check_ms;
-          std::cout << j.dump() << "\n";
         }
-        return ok ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;
+        return finish(ok, std::move(j));
       },
       &json);
 }

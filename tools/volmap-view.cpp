@@ -21,6 +21,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -58,15 +59,13 @@ std::string default_bundle_path() {
 }
 
 std::string read_bundle(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
     throw Error(ErrorKind::Io, path, 0,
                 "viewer bundle not found: build it with `npm ci && npm run build` in viewer/ "
                 "(or pass --bundle / set VOLMAP_VIEWER_BUNDLE)");
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return read_text_file(path);  // JavaScript: text, vetted like every input
 }
 
 // VOLMAP-signed volume: orient3d(a,b,c,d) = det[a-d; b-d; c-d] = 6 V (display only, not a sign
@@ -93,6 +92,17 @@ std::vector<std::int8_t> exact_signs(const TetMeshData& m, const std::vector<dou
   const TetSignCounts c = orient3d_tets(xyz.data(), xyz.size() / 3, m.tets.data(), m.num_tets(), signs.data());
   if (!c.ok) throw Error(ErrorKind::BadInput, what, 0, std::string("cannot orient tets: ") + c.error);
   return signs;
+}
+
+// The page stores coordinates as float32: larger ones cannot be shown (they would become infinite).
+void require_float_range(const std::vector<double>& xyz, const std::string& path) {
+  for (double c : xyz)
+    if (std::abs(c) > static_cast<double>(std::numeric_limits<float>::max())) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%.3g", c);
+      throw Error(ErrorKind::Unsupported, path, 0,
+                  std::string("coordinate ") + buf + " is beyond the float range (3.4e38) the page stores");
+    }
 }
 
 ViewField field_from(const std::string& key, const std::string& label, double lower, double upper,
@@ -126,7 +136,9 @@ int main(int argc, char** argv) {
   app.add_option("--energy", energy, "field coloured at load: conformal, dirichlet, symdir, arap, mips3d, "
                                      "quality_out, quality_in (default: mips3d for a volume map, quality_in otherwise)");
   app.add_option("--map", map_path, "boundary map (vid x y z) of <in.mesh>: boundary-map mode without <out.mesh>");
-  app.add_option("--upper", upper, "upper clamp of the energies (VOLMAP metrics default 100)")->capture_default_str();
+  app.add_option("--upper", upper, "upper clamp of the energies (VOLMAP metrics default 100, at least 6)")
+      ->capture_default_str()
+      ->check(volmap_tools::finite_range(6.0, 1e300));
   app.add_option("--bundle", bundle_path, "viewer bundle (default: $VOLMAP_VIEWER_BUNDLE or " + default_bundle_path() + ")");
   app.add_option("--title", title, "page title (default: the input file names)");
   app.add_flag("--json", json, "print one JSON object (output, bytes, counts, timings)");
@@ -137,10 +149,21 @@ int main(int argc, char** argv) {
       const char* env = std::getenv("VOLMAP_VIEWER_BUNDLE");
       bundle_path = env && *env ? env : default_bundle_path();
     }
+    volmap_tools::RunFiles files;
+    for (const std::string& in : inputs) require_tet_mesh_extension(in);
+    files.input(inputs[0], "input mesh");
+    if (inputs.size() == 2) files.input(inputs[1], "mapped mesh");
+    files.input(map_path, "--map file");
+    files.input(bundle_path, "viewer bundle");
+    AtomicOutput& page = files.output(output, "output page");
     const std::string bundle = read_bundle(bundle_path);
-    if (!(upper >= 6) || !std::isfinite(upper)) throw Error(ErrorKind::BadInput, "", 0, "--upper must be a finite number >= 6");
+    if (bundle.empty()) throw Error(ErrorKind::Io, bundle_path, 0, "the viewer bundle is empty (build viewer/: npm ci && npm run build)");
 
     const TetMeshData source = read_tet_mesh(inputs[0]);
+    require_float_range(source.xyz, inputs[0]);
+    if (source.num_tets() == 0) throw Error(ErrorKind::BadInput, inputs[0], 0, "has no tets: nothing to show");
+    // A viewer shows broken meshes too (that is what it is for), but says so.
+    const InputMeshVerdict verdict = volmap_tools::naming_file(inputs[0], [&] { return judge_input_mesh(source); });
     ViewData view;
     view.source_name = fs::path(inputs[0]).filename().string();
     view.source_xyz = source.xyz;
@@ -155,10 +178,12 @@ int main(int argc, char** argv) {
     if (!map_path.empty()) {
       map = read_boundary_map(map_path);
       validate_boundary_map(map, source, map_path);
+      require_float_range(map.xyz, map_path);
     }
 
     if (inputs.size() == 2) {
       const TetMeshData target = read_tet_mesh(inputs[1]);
+      require_float_range(target.xyz, inputs[1]);
       if (target.num_vertices() != source.num_vertices() || target.tets != source.tets) {
         throw Error(ErrorKind::BadInput, inputs[1], 0,
                     "not a map of " + inputs[0] + ": the tets differ (" + std::to_string(target.num_tets()) + " vs " +
@@ -218,17 +243,18 @@ int main(int argc, char** argv) {
     if (!known) {
       std::string keys;
       for (const auto& f : view.fields) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(ErrorKind::BadInput, "", 0, "--energy " + energy + " is not available here (choose one of: " + keys + ")");
+      throw Error(ErrorKind::BadInput, "--energy " + energy + " is not available here (choose one of: " + keys + ")");
     }
     view.title = title.empty() ? view.source_name + (view.target_name.empty() ? "" : " → " + view.target_name) : title;
 
-    write_view_html(output, view, bundle);
+    const std::string html = volmap_tools::naming_file(bundle_path, [&] { return build_view_html(view, bundle); });
+    write_text(page, html);
+    files.commit();
     const ViewSummary summary = summarize_view(view);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const auto bytes = fs::file_size(output);
+    const std::size_t bytes = html.size();
     if (json) {
-      nlohmann::json j{{"ok", true},
-                       {"output", output},
+      nlohmann::json j{{"output", output},
                        {"bytes", bytes},
                        {"mode", view.mode == ViewMode::VolumeMap ? "volume-map" : view.mode == ViewMode::BoundaryMap ? "boundary-map" : "mesh"},
                        {"num_vertices", view.num_vertices()},
@@ -236,7 +262,9 @@ int main(int argc, char** argv) {
                        {"num_inverted", summary.num_inverted},
                        {"num_degenerate", summary.num_degenerate},
                        {"bundle", bundle_path},
+                       {"valid_input", verdict.valid},
                        {"seconds", seconds}};
+      if (!verdict.valid) j["input_problem"] = verdict.reason();
       if (!map_path.empty() && inputs.size() == 2) j["map_coordinate_mismatches"] = map_mismatches;
       for (const auto& fs_ : summary.fields) {
         j["fields"][fs_.key] = {{"count", fs_.count},
@@ -244,8 +272,10 @@ int main(int argc, char** argv) {
                                 {"max", std::isfinite(fs_.max) ? nlohmann::json(fs_.max) : nlohmann::json()},
                                 {"weighted_mean", std::isfinite(fs_.weighted_mean) ? nlohmann::json(fs_.weighted_mean) : nlohmann::json()}};
       }
-      std::cout << j.dump() << "\n";
+      return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
     } else {
+      if (!verdict.valid)
+        std::cout << "volmap-view: note: " << inputs[0] << " is not a valid input tet mesh: " << verdict.reason() << "\n";
       std::cout << "volmap-view: wrote " << output << " (" << bytes << " bytes, " << view.num_tets() << " tets, "
                 << summary.num_inverted << " inverted, " << summary.num_degenerate << " degenerate) in " << seconds
                 << " s\n";

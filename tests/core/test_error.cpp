@@ -11,7 +11,9 @@ TEST_CASE("Error formats file:line: reason") {
   CHECK(std::string(e.what()) == "a.mesh:12: bad count");
   CHECK(e.line() == 12);
   CHECK(e.kind() == volmap::ErrorKind::BadInput);
-  volmap::Error nofile(volmap::ErrorKind::Failed, "", 0, "oops");
+  volmap::Error nofile(volmap::ErrorKind::Failed, "oops");
+  CHECK(nofile.file().empty());
+  CHECK(nofile.line() == 0);
   CHECK(std::string(nofile.what()) == "oops");
 }
 

@@ -43,7 +43,7 @@ Error map_error(const std::string& text, const TetMeshData* mesh = nullptr) {
     return e;
   }
   FAIL("no error for map text: " << text);
-  return Error(ErrorKind::Failed, "", 0, "");
+  return Error(ErrorKind::Failed, "");
 }
 
 const char* kG1[] = {"bimba", "bird", "blade", "bone", "bumpy_sphere", "bunny", "buste", "camile_hand", "devil", "duck",

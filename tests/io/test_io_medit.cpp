@@ -39,7 +39,7 @@ Error parse_error(const std::string& text, const char* name = "bad.mesh") {
     return e;
   }
   FAIL("no error thrown for " << name);
-  return Error(ErrorKind::Failed, "", 0, "");
+  return Error(ErrorKind::Failed, "");
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {

@@ -81,7 +81,7 @@ Error vtk_error(const std::string& text, const char* name = "bad.vtk") {
     return e;
   }
   FAIL("no error for " << name);
-  return Error(ErrorKind::Failed, "", 0, "");
+  return Error(ErrorKind::Failed, "");
 }
 
 struct Expected {

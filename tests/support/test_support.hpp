@@ -27,9 +27,11 @@ inline std::filesystem::path data_file(const std::string& relative) {
   return std::filesystem::exists(p, ec) ? p : std::filesystem::path();
 }
 
-// Path of a built tool (build/bin/volmap-*).
+// Path of a built tool (build/bin/volmap-*), or of the tool in VOLMAP_TOOL_DIR when that is set (to
+// run the tool suites against other binaries, e.g. a build of main, and see which tests they fail).
 inline std::filesystem::path tool(const std::string& name) {
-  return std::filesystem::path(VOLMAP_BIN_DIR) / name;
+  const char* env = std::getenv("VOLMAP_TOOL_DIR");
+  return std::filesystem::path(env && *env ? env : VOLMAP_BIN_DIR) / name;
 }
 
 // A per-process scratch folder for a test file's generated inputs: <tmp>/volmap_test_<tag>_<pid>.

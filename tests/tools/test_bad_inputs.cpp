@@ -11,152 +11,54 @@
 // Tools that are not built (e.g. volmap-view on a branch without it) are skipped with a message.
 #include <doctest/doctest.h>
 
-#include <volmap/testing/generate.hpp>
-
-#include "test_support.hpp"
+#include "tool_run.hpp"
 
 #include <algorithm>
-#include <csignal>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <iostream>
 #include <sstream>
 #include <string>
-#include <sys/resource.h>
-#include <sys/time.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
-
-#if defined(__SANITIZE_ADDRESS__)
-#define VOLMAP_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define VOLMAP_TEST_ASAN 1
-#endif
-#endif
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  bool signaled = false;
-  int signal = 0;
-  int exit_code = -1;
-  long peak_rss_kb = 0;
-  std::string out, err;
-};
+using volmap_test::listing;
+using volmap_test::names_one_of;
+using volmap_test::RunResult;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+void spit(const fs::path& p, const std::string& text) { volmap_test::write_bytes(p, text); }
 
-void spit(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
-
-// Runs `argv` with stdout/stderr captured, a 120 s alarm, and (outside ASan) a 3 GiB address-space
-// limit. ASan builds get max_allocation_size_mb=2048 instead (ASan reserves terabytes of shadow).
 RunResult run(const std::vector<std::string>& argv, const fs::path& scratch) {
-  const fs::path out_path = scratch / "stdout.txt", err_path = scratch / "stderr.txt";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(out, 1);
-    dup2(err, 2);
-    alarm(120);
-#ifdef VOLMAP_TEST_ASAN
-    std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
-    asan += std::string(asan.empty() ? "" : ":") + "max_allocation_size_mb=2048:allocator_may_return_null=0";
-    setenv("ASAN_OPTIONS", asan.c_str(), 1);
-#else
-    const rlimit limit{3ul << 30, 3ul << 30};
-    setrlimit(RLIMIT_AS, &limit);
-#endif
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    _exit(127);
-  }
-  RunResult r;
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  r.peak_rss_kb = usage.ru_maxrss;
-  if (WIFSIGNALED(status)) {
-    r.signaled = true;
-    r.signal = WTERMSIG(status);
-  } else {
-    r.exit_code = WEXITSTATUS(status);
-  }
-  r.out = slurp(out_path);
-  r.err = slurp(err_path);
-  fs::remove(out_path);
-  fs::remove(err_path);
-  return r;
+  return volmap_test::run_tool_process(argv, scratch);
 }
 
-// Everything under `dir` (recursively), as sorted relative paths.
-std::vector<std::string> listing(const fs::path& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); ++it)
-    names.push_back(it->path().lexically_relative(dir).string());  // lexical: symlink loops are inputs too
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Good inputs: the library's n³ Kuhn grid of [0,n]³ (6 VOLMAP-positive tets per cube) and its identity
 // boundary map.
 struct Grid {
   std::vector<double> xyz;
   std::vector<std::uint32_t> tets;  // 0-based
-  std::vector<bool> boundary;
+  volmap_test::GridFixture fixture;
 };
 
 Grid kuhn_grid(int n) {
-  volmap::TetMeshData d = volmap::generate_kuhn_grid(std::size_t(n), std::size_t(n), std::size_t(n));
-  Grid g{std::move(d.xyz), std::move(d.tets), {}};
-  for (std::size_t v = 0; v < g.xyz.size() / 3; ++v) {
-    bool on_boundary = false;
-    for (int a = 0; a < 3; ++a) on_boundary = on_boundary || g.xyz[3 * v + a] == 0 || g.xyz[3 * v + a] == n;
-    g.boundary.push_back(on_boundary);
-  }
+  Grid g{{}, {}, volmap_test::kuhn_grid_fixture(n)};
+  g.xyz = g.fixture.mesh.xyz;
+  g.tets = g.fixture.mesh.tets;
   return g;
 }
 
 std::string medit(const Grid& g) {
-  std::ostringstream s;
-  s << "MeshVersionFormatted 1\nDimension 3\nVertices\n" << g.xyz.size() / 3 << "\n";
-  for (std::size_t v = 0; v < g.xyz.size() / 3; ++v)
-    s << g.xyz[3 * v] << " " << g.xyz[3 * v + 1] << " " << g.xyz[3 * v + 2] << " 0\n";
-  s << "Tetrahedra\n" << g.tets.size() / 4 << "\n";
-  for (std::size_t t = 0; t < g.tets.size() / 4; ++t)
-    s << g.tets[4 * t] + 1 << " " << g.tets[4 * t + 1] + 1 << " " << g.tets[4 * t + 2] + 1 << " "
-      << g.tets[4 * t + 3] + 1 << " 0\n";
-  s << "End\n";
-  return s.str();
+  volmap::TetMeshData m = g.fixture.mesh;
+  m.xyz = g.xyz;
+  m.tets = g.tets;
+  return volmap_test::medit_text(m);
 }
 
-std::string identity_map(const Grid& g) {
-  std::ostringstream s;
-  for (std::size_t v = 0; v < g.boundary.size(); ++v)
-    if (g.boundary[v]) s << v << " " << g.xyz[3 * v] << " " << g.xyz[3 * v + 1] << " " << g.xyz[3 * v + 2] << "\n";
-  return s.str();
-}
+std::string identity_map(const Grid& g) { return volmap_test::identity_map_text(g.fixture); }
 
 std::string replace_once(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
@@ -165,18 +67,6 @@ std::string replace_once(std::string text, const std::string& from, const std::s
 }
 
 // ---------------------------------------------------------------------------------------------
-bool names_one_of(const std::string& text, const std::string& alternatives) {
-  if (alternatives.empty()) return true;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t bar = alternatives.find('|', start);
-    const std::string name = alternatives.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
-    if (text.find(name) != std::string::npos) return true;
-    if (bar == std::string::npos) return false;
-    start = bar + 1;
-  }
-}
-
 struct Corpus {
   fs::path dir;      // inputs (never written by a tool)
   fs::path scratch;  // stdout/stderr captures

@@ -43,7 +43,7 @@ TEST_CASE("volmap-map certifies maps of the Expansion Cones .ovm inputs onto the
     auto r = run(map + " " + quote(ovm.string()) + " " + quote(boundary.string()) + " " + quote(out) + " --json");
     CHECK(r.code == 2);
     const auto refused = nlohmann::json::parse(r.out);
-    CHECK(refused["error"].get<std::string>().find(std::string("the source mesh must be VOLMAP-positive: all ") + c.tets +
+    CHECK(refused["error"].get<std::string>().find(std::string("not a valid input tet mesh: all ") + c.tets +
                                                    " tets are in the opposite orientation convention") != std::string::npos);
 
     REQUIRE(run(check + " " + quote(ovm.string()) + " --fix " + quote(flipped)).code == 0);

@@ -1,7 +1,7 @@
 // HTML + SVG benchmark report. Plots are drawn here as plain SVG (no scripts, no external assets):
 // success rate per group and domain, per-case distributions of MIPS3D and conformal distortion
 // sorted by value (the style of Fig. 7 of the VOLMAP paper), inverted tets, time and growth.
-// The Markdown mapping table is issue 6's per-domain table (certified at fixed connectivity / with
+// The Markdown mapping table is the per-domain table (certified at fixed connectivity / with
 // refinement, growth, time, distortion means), meant to be pasted in notes as it is.
 #include "support/benchmark_report.hpp"
 #include "support/dataset.hpp"

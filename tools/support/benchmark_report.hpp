@@ -1,6 +1,6 @@
 // tools/support/benchmark_report.hpp — the self-contained HTML report (inline SVG plots, no network, no
 // external assets), the CSV summary of one or more benchmark runs (see benchmark_runner.hpp), and
-// the per-domain mapping table of issue 6 in Markdown.
+// the per-domain mapping table in Markdown.
 #pragma once
 
 #include <optional>

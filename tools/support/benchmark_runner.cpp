@@ -161,12 +161,37 @@ std::optional<CaseRecord> record_from_json_line(const std::string& line) {
   }
 }
 
+// A line cut short by a runner killed mid-write: the start of a JSON object whose parse runs out of
+// input (such lines are skipped; anything else unparsable is an error).
+static bool is_torn_record(const std::string& line) {
+  if (line.empty() || line.front() != '{') return false;
+  try {
+    (void)json::parse(line);
+  } catch (const json::parse_error& e) {
+    return e.byte >= line.size();  // the parser reached the end: truncated, not malformed
+  }
+  return false;
+}
+
 std::vector<CaseRecord> read_results(const std::string& results_jsonl) {
   std::vector<CaseRecord> records;
-  std::ifstream in(results_jsonl);
-  std::string line;
-  while (std::getline(in, line))
-    if (auto r = record_from_json_line(line)) records.push_back(std::move(*r));
+  std::error_code ec;
+  if (!fs::exists(results_jsonl, ec)) return records;
+  const std::string text = read_text_file(results_jsonl);
+  std::size_t line_number = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (auto r = record_from_json_line(line)) {
+      records.push_back(std::move(*r));
+    } else if (!is_torn_record(line)) {
+      throw Error(ErrorKind::BadInput, results_jsonl, line_number,
+                  "not a volmap-run record (a JSON object with at least \"case\" and \"method\")");
+    }
+  }
   return records;
 }
 
@@ -185,8 +210,7 @@ static MethodSpec resolve_method_command(const std::string& method, const std::s
   } else {
     std::error_code ec;
     if (!fs::is_regular_file(method, ec) || ::access(method.c_str(), X_OK) != 0)
-      throw Error(ErrorKind::BadInput, "", 0,
-                  "method '" + method + "' is neither tutte3d, map, tlc nor an executable file");
+      throw Error(ErrorKind::BadInput, "method '" + method + "' is neither tutte3d, map, tlc nor an executable file");
     spec.name = fs::path(method).filename().string();
     spec.command = {fs::absolute(method).string()};
     spec.builtin = false;
@@ -194,7 +218,7 @@ static MethodSpec resolve_method_command(const std::string& method, const std::s
   }
   std::error_code ec;
   if (!fs::is_regular_file(spec.command[0], ec))
-    throw Error(ErrorKind::BadInput, "", 0, "built-in method '" + method + "' needs " + spec.command[0] + " (not built?)");
+    throw Error(ErrorKind::BadInput, "built-in method '" + method + "' needs " + spec.command[0] + " (not built?)");
   return spec;
 }
 
@@ -209,7 +233,7 @@ MethodSpec resolve_method(const std::string& method, const std::string& tools_di
                           const std::vector<std::string>& args) {
   if (!label.empty() && (label == "." || label == ".." ||
                          label.find_first_of("/ \t\n\r") != std::string::npos))
-    throw Error(ErrorKind::BadInput, "", 0, "label '" + label + "' must be a plain folder name (no '/' or spaces)");
+    throw Error(ErrorKind::BadInput, "label '" + label + "' must be a plain folder name (no '/' or spaces)");
   MethodSpec spec = resolve_method_command(method, tools_dir);
   spec.label = label.empty() ? spec.name : label;
   spec.args = args;

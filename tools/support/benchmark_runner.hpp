@@ -49,7 +49,9 @@ struct CaseRecord {
 std::string record_to_json_line(const CaseRecord& record);  // one line, no newline
 // Parses one results line; std::nullopt for a torn or foreign line.
 std::optional<CaseRecord> record_from_json_line(const std::string& line);
-// All records of a results file (torn lines skipped). Empty when the file does not exist.
+// All records of a results file (lines cut short by a killed runner skipped). Empty when the file
+// does not exist. Throws Error(BadInput) naming the file and line for any other line that is not a
+// record (garbage is never read as "no results").
 std::vector<CaseRecord> read_results(const std::string& results_jsonl);
 
 struct MethodSpec {

@@ -34,7 +34,7 @@ std::vector<BenchmarkCase> discover_cases(const std::string& root, const std::ve
   if (!fs::is_directory(root, ec)) throw_io(root, "dataset folder does not exist");
   for (const auto& d : domains)
     if (!contains(volmap_domain_suffixes(), d))
-      throw Error(ErrorKind::BadInput, "", 0, "unknown domain '" + d + "' (expected cube, tet, pyr, octa, star, sphere or pc)");
+      throw Error(ErrorKind::BadInput, "unknown domain '" + d + "' (expected cube, tet, pyr, octa, star, sphere or pc)");
 
   std::vector<std::pair<int, std::string>> group_dirs;
   for (const auto& entry : fs::directory_iterator(root, ec)) {

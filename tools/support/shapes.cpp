@@ -94,7 +94,7 @@ Vec deform(const std::string& name, const Vec& u) {
     const double bend_radius = 2.2, angle = ex / bend_radius;
     return {(bend_radius - ey) * std::sin(angle), bend_radius - (bend_radius - ey) * std::cos(angle), ez};
   }
-  throw Error(ErrorKind::BadInput, "", 0, "unknown built-in shape '" + name + "'");
+  throw Error(ErrorKind::BadInput, "unknown built-in shape '" + name + "'");
 }
 
 
@@ -572,11 +572,11 @@ const std::vector<std::string>& thin_shape_names() {
 
 SurfaceData make_builtin_shape(const std::string& name, int subdivisions) {
   if (subdivisions < 0 || subdivisions > 7)
-    throw Error(ErrorKind::BadInput, "", 0, "subdivisions must be in [0, 7]");
+    throw Error(ErrorKind::BadInput, "subdivisions must be in [0, 7]");
   const auto& thin = thin_shape_names();
   if (std::find(thin.begin(), thin.end(), name) != thin.end()) {
     if (subdivisions < 1 || subdivisions > 5)
-      throw Error(ErrorKind::BadInput, "", 0, "subdivisions of a thin-feature shape must be in [1, 5]");
+      throw Error(ErrorKind::BadInput, "subdivisions of a thin-feature shape must be in [1, 5]");
     return outward(make_thin_shape(name, subdivisions));
   }
   deform(name, {1, 0, 0});  // validates the name before any work

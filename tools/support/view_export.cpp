@@ -17,7 +17,7 @@ namespace volmap {
 namespace {
 
 void require(bool ok, const std::string& reason) {
-  if (!ok) throw Error(ErrorKind::BadInput, "", 0, "view data: " + reason);
+  if (!ok) throw Error(ErrorKind::BadInput, "view data: " + reason);
 }
 
 std::string json_string(const std::string& s) {
@@ -203,7 +203,7 @@ std::string base64_encode(const std::uint8_t* bytes, std::size_t size) {
 
 std::string build_view_html(const ViewData& d, const std::string& viewer_bundle) {
   validate_view_data(d);
-  if (!little_endian()) throw Error(ErrorKind::Unsupported, "", 0, "view export: big-endian hosts are not supported");
+  if (!little_endian()) throw Error(ErrorKind::Unsupported, "view export: big-endian hosts are not supported");
   require(!viewer_bundle.empty(), "the viewer bundle is empty (build viewer/: npm ci && npm run build)");
   std::string lower_bundle(viewer_bundle.size(), ' ');
   std::transform(viewer_bundle.begin(), viewer_bundle.end(), lower_bundle.begin(),

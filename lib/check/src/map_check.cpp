@@ -53,7 +53,7 @@ TetSignCounts batch_signs(const Coordinate* xyz, std::size_t num_vertices, const
   const std::size_t num_chunks = (num_tets + kChunk - 1) / kChunk;
   if (!parallel || num_chunks <= 1) {
     TetSignCounts counts = orient3d_tets(xyz, num_vertices, tets, num_tets, signs);
-    if (!counts.ok) throw_bad_input("", 0, std::string(what) + ": " + counts.error);
+    if (!counts.ok) throw Error(ErrorKind::BadInput, std::string(what) + ": " + counts.error);
     return counts;
   }
   std::atomic<std::size_t> positive{0}, zero{0}, negative{0};
@@ -83,7 +83,7 @@ TetSignCounts batch_signs(const Coordinate* xyz, std::size_t num_vertices, const
       negative += part.negative;
     }
   });
-  if (!ok) throw_bad_input("", 0, std::string(what) + ": " + error.load());
+  if (!ok) throw Error(ErrorKind::BadInput, std::string(what) + ": " + error.load());
   TetSignCounts counts;
   counts.positive = positive;
   counts.zero = zero;
@@ -93,7 +93,7 @@ TetSignCounts batch_signs(const Coordinate* xyz, std::size_t num_vertices, const
 
 void check_mesh_arrays(const TetMeshData& mesh, const char* what) {
   if (mesh.xyz.size() % 3 != 0 || mesh.tets.size() % 4 != 0) {
-    throw_bad_input("", 0, std::string(what) + ": malformed mesh arrays");
+    throw Error(ErrorKind::BadInput, std::string(what) + ": malformed mesh arrays");
   }
 }
 
@@ -127,8 +127,8 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
       filter_in = orient3d_batch_filter(in_xyz, nv);
       filter_out = orient3d_batch_filter(out_xyz, nv);
     }
-    if (!filter_in.finite) throw_bad_input("", 0, "input mesh: non-finite vertex coordinate");
-    if (!filter_out.finite) throw_bad_input("", 0, "output mesh: non-finite vertex coordinate");
+    if (!filter_in.finite) throw Error(ErrorKind::BadInput, "input mesh: non-finite vertex coordinate");
+    if (!filter_out.finite) throw Error(ErrorKind::BadInput, "output mesh: non-finite vertex coordinate");
   }
   auto signs_of = [&](const Orient3dBatchFilter& filter, const Coordinate* xyz, std::size_t begin, std::size_t count,
                       std::int8_t* signs) {
@@ -182,8 +182,8 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
   if (!ok) {
     if (identical) match_connectivity(in, out);  // throws the exact id when an id is out of range
     for (const Block& block : blocks) {
-      if (!block.in.ok) throw_bad_input("", 0, std::string("input mesh: ") + block.in.error);
-      if (!block.out.ok) throw_bad_input("", 0, std::string("output mesh: ") + block.out.error);
+      if (!block.in.ok) throw Error(ErrorKind::BadInput, std::string("input mesh: ") + block.in.error);
+      if (!block.out.ok) throw Error(ErrorKind::BadInput, std::string("output mesh: ") + block.out.error);
     }
   }
 
@@ -257,11 +257,11 @@ MapCheckReport check_core(const TetMeshData& in, const Coordinate* in_xyz, const
 ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData& out) {
   const std::size_t nv = in.num_vertices(), nt = in.num_tets();
   if (out.num_vertices() != nv) {
-    throw_bad_input("", 0, "vertex count mismatch: input has " + std::to_string(nv) + " vertices, output " +
+    throw Error(ErrorKind::BadInput, "vertex count mismatch: input has " + std::to_string(nv) + " vertices, output " +
                                std::to_string(out.num_vertices()));
   }
   if (out.num_tets() != nt) {
-    throw_bad_input("", 0, "tet count mismatch: input has " + std::to_string(nt) + " tets, output " +
+    throw Error(ErrorKind::BadInput, "tet count mismatch: input has " + std::to_string(nt) + " tets, output " +
                                std::to_string(out.num_tets()));
   }
   // The common case (the candidate-method contract): the output repeats the input's tet array.
@@ -279,7 +279,7 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
     if (nv > 0xffffffffu || !any_out_of_range) continue;
     for (std::size_t i = 0; i < mesh->tets.size(); ++i) {
       if (mesh->tets[i] >= nv) {
-        throw_bad_input("", 0, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
+        throw Error(ErrorKind::BadInput, std::string(mesh == &in ? "input" : "output") + " tet " + std::to_string(i / 4) +
                                    " references vertex " + std::to_string(mesh->tets[i] + 1ull) + " (1-based) of " +
                                    std::to_string(nv));
       }
@@ -318,7 +318,7 @@ ConnectivityPairing match_connectivity(const TetMeshData& in, const TetMeshData&
       const Key& missing = keys_out[k] < keys_in[k] ? keys_out[k] : keys_in[k];
       const bool from_input = !(keys_out[k] < keys_in[k]);
       const std::uint32_t* tet = from_input ? &in.tets[4 * missing.tet] : &out.tets[4 * missing.tet];
-      throw_bad_input("", 0, std::string("connectivity mismatch: ") + (from_input ? "input" : "output") + " tet " +
+      throw Error(ErrorKind::BadInput, std::string("connectivity mismatch: ") + (from_input ? "input" : "output") + " tet " +
                                  std::to_string(missing.tet) + " " + quad_text(tet) + " has no tet with the same vertices in the " +
                                  (from_input ? "output" : "input"));
     }
@@ -336,7 +336,7 @@ MapCheckReport check_map(const TetMeshData& in, const TetMeshData& out, const Bo
     report.boundary_checked = true;
     for (std::size_t k = 0; k < boundary->vids.size(); ++k) {
       const std::uint32_t v = boundary->vids[k];
-      if (v >= nv) throw_bad_input("", 0, "boundary map vertex id " + std::to_string(v) + " is out of range");
+      if (v >= nv) throw Error(ErrorKind::BadInput, "boundary map vertex id " + std::to_string(v) + " is out of range");
       const double* p = &out.xyz[3 * v];
       const double* q = &boundary->xyz[3 * k];
       if (!points_equal(p, q)) {  // exact value equality, +0 == -0, also under DAZ
@@ -354,11 +354,11 @@ MapCheckReport check_map_rational(const TetMeshData& in, const std::vector<Ratio
                                   const std::vector<Rational>& out_xyz, const BoundaryMap* boundary,
                                   const MapCheckOptions& options) {
   if (in_xyz.size() != 3 * in.num_vertices()) {
-    throw_bad_input("", 0, "input rationals: " + std::to_string(in_xyz.size()) + " values for " +
+    throw Error(ErrorKind::BadInput, "input rationals: " + std::to_string(in_xyz.size()) + " values for " +
                                std::to_string(in.num_vertices()) + " vertices (need 3 per vertex)");
   }
   if (out_xyz.size() != 3 * out.num_vertices()) {
-    throw_bad_input("", 0, "output rationals: " + std::to_string(out_xyz.size()) + " values for " +
+    throw Error(ErrorKind::BadInput, "output rationals: " + std::to_string(out_xyz.size()) + " values for " +
                                std::to_string(out.num_vertices()) + " vertices (need 3 per vertex)");
   }
   MapCheckReport report = check_core<Rational>(in, in_xyz.data(), out, out_xyz.data(), options);
@@ -368,7 +368,7 @@ MapCheckReport check_map_rational(const TetMeshData& in, const std::vector<Ratio
     report.boundary_checked = true;
     for (std::size_t k = 0; k < boundary->vids.size(); ++k) {
       const std::uint32_t v = boundary->vids[k];
-      if (v >= nv) throw_bad_input("", 0, "boundary map vertex id " + std::to_string(v) + " is out of range");
+      if (v >= nv) throw Error(ErrorKind::BadInput, "boundary map vertex id " + std::to_string(v) + " is out of range");
       bool same = true;
       for (int i = 0; i < 3; ++i) same = same && out_xyz[3 * v + i] == Rational(boundary->xyz[3 * k + i]);
       if (!same) {
@@ -390,7 +390,7 @@ TetSignCounts orient3d_tets_parallel(const double* xyz, std::size_t num_vertices
 std::vector<Rational> rationals_from_doubles(const std::vector<double>& xyz) {
   std::vector<Rational> result(xyz.size());
   for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!std::isfinite(xyz[i])) throw_bad_input("", 0, "non-finite coordinate cannot be converted to a rational");
+    if (!std::isfinite(xyz[i])) throw Error(ErrorKind::BadInput, "non-finite coordinate cannot be converted to a rational");
     result[i] = Rational(xyz[i]);
   }
   return result;

@@ -275,7 +275,7 @@ FirstPass orientation_and_volumes(const TetMeshData& in, const TetMeshData& out,
 
 void require_finite(const TetMeshData& mesh, const char* what) {
   if (!std::all_of(mesh.xyz.begin(), mesh.xyz.end(), [](double x) { return std::isfinite(x); }))
-    throw_bad_input("", 0, std::string(what) + ": non-finite vertex coordinate");
+    throw Error(ErrorKind::BadInput, std::string(what) + ": non-finite vertex coordinate");
 }
 
 // Tets [begin, end) into results[0, end − begin). The vertices of tet t + kPrefetchDistance are
@@ -373,10 +373,10 @@ double tet_scaled_jacobian_volmap(const double* p0, const double* p1, const doub
 MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, const MetricsOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (!(options.upper >= 6.0) || !std::isfinite(options.upper)) {
-    throw_bad_input("", 0, "upper bound must be a finite number >= 6 (the largest lower clamp)");
+    throw Error(ErrorKind::BadInput, "upper bound must be a finite number >= 6 (the largest lower clamp)");
   }
   if (in.xyz.size() % 3 != 0 || in.tets.size() % 4 != 0 || out.xyz.size() % 3 != 0 || out.tets.size() % 4 != 0) {
-    throw_bad_input("", 0, "malformed mesh arrays");
+    throw Error(ErrorKind::BadInput, "malformed mesh arrays");
   }
   match_connectivity(in, out);  // throws on any mismatch
   const std::size_t nt = in.num_tets();
@@ -389,7 +389,7 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
   std::vector<std::int8_t> sign_out(nt);
   const FirstPass first = orientation_and_volumes(in, out, sign_out.data(), options.parallel);
   if (first.in_not_positive != 0) {
-    throw_bad_input("", 0, "input mesh has " + std::to_string(first.in_not_positive) +
+    throw Error(ErrorKind::BadInput, "input mesh has " + std::to_string(first.in_not_positive) +
                                " tets that are not VOLMAP-positive (exact orient3d <= 0; first: tet " +
                                std::to_string(first.first_in_not_positive) + "): metrics need a positive source mesh");
   }

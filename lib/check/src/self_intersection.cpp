@@ -363,13 +363,12 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
                                                const SelfIntersectionOptions& options) {
   SelfIntersectionResult result;
   if (num_tris >= (std::size_t(1) << 32))
-    throw Error(ErrorKind::Unsupported, "", 0, "self-intersection test: more than 2^32 triangles");
+    throw Error(ErrorKind::Unsupported, "self-intersection test: more than 2^32 triangles");
   // Validate ids and referenced coordinates.
   std::vector<std::uint8_t> referenced(num_vertices, 0);
   for (std::size_t i = 0; i < 3 * num_tris; ++i) {
     if (tris[i] >= num_vertices)
-      throw Error(ErrorKind::BadInput, "", 0,
-                  "triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(tris[i]) +
+      throw Error(ErrorKind::BadInput, "triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(tris[i]) +
                       " but there are " + std::to_string(num_vertices) + " vertices");
     referenced[tris[i]] = 1;
   }
@@ -379,7 +378,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
     if (!referenced[v]) continue;
     const double* p = xyz + 3 * v;
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw Error(ErrorKind::BadInput, "", 0, "vertex " + std::to_string(v) + " has a non-finite coordinate");
+      throw Error(ErrorKind::BadInput, "vertex " + std::to_string(v) + " has a non-finite coordinate");
     used.push_back(std::uint32_t(v));
   }
   const std::size_t cap = options.max_reported;

@@ -69,8 +69,8 @@ void flip_all_tets(TetMeshData& mesh) {
 }
 
 TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOptions& options) {
-  if (mesh.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "coordinate array size is not a multiple of 3");
-  if (mesh.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "", 0, "tet array size is not a multiple of 4");
+  if (mesh.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "coordinate array size is not a multiple of 3");
+  if (mesh.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "tet array size is not a multiple of 4");
   TetMeshCheckReport r;
   r.num_vertices = mesh.num_vertices();
   r.num_tets = mesh.num_tets();
@@ -79,7 +79,7 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
   tbb::parallel_invoke(
       [&] { r.signs = orient3d_tets(mesh.xyz.data(), r.num_vertices, mesh.tets.data(), r.num_tets, nullptr); },
       [&] { r.topology = analyze_topology(mesh); });
-  if (!r.signs.ok) throw Error(ErrorKind::BadInput, "", 0, std::string("orientation: ") + r.signs.error);
+  if (!r.signs.ok) throw Error(ErrorKind::BadInput, std::string("orientation: ") + r.signs.error);
 
   // Boundary triangles (outward for VOLMAP-positive tets) -> exact self-intersection test.
   const TopologyReport& topo = r.topology;
@@ -141,7 +141,7 @@ TetMeshCheckReport check_tet_mesh(const TetMeshData& mesh, const TetMeshCheckOpt
 // ------------------------------------------------------------------------------------ surfaces --
 SurfaceCheckReport check_triangle_surface(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tris,
                                           const SelfIntersectionOptions& options) {
-  if (xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "coordinate array size is not a multiple of 3");
+  if (xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "coordinate array size is not a multiple of 3");
   SurfaceCheckReport r;
   r.topology = analyze_surface_topology(xyz.size() / 3, tris);
   r.self_intersections = find_self_intersections(xyz, tris, options);

@@ -19,8 +19,7 @@ void check_tet_ids(const TetMeshData& mesh) {
   const std::size_t nv = mesh.num_vertices();
   for (std::size_t k = 0; k < mesh.tets.size(); ++k)
     if (mesh.tets[k] >= nv)
-      throw Error(ErrorKind::BadInput, "", 0,
-                  "tet " + std::to_string(k / 4) + " references vertex " + std::to_string(mesh.tets[k]) +
+      throw Error(ErrorKind::BadInput, "tet " + std::to_string(k / 4) + " references vertex " + std::to_string(mesh.tets[k]) +
                       " but the mesh has " + std::to_string(nv) + " vertices");
 }
 
@@ -86,10 +85,10 @@ std::vector<std::uint32_t> boundary_vertex_ids(const TetMeshData& mesh,
   std::vector<std::uint8_t> on_boundary(nv, 0);
   for (std::uint64_t hf : boundary_faces) {
     if (hf / 4 >= mesh.num_tets())
-      throw Error(ErrorKind::BadInput, "", 0, "half-face id " + std::to_string(hf) + " out of range");
+      throw Error(ErrorKind::BadInput, "half-face id " + std::to_string(hf) + " out of range");
     for (std::uint32_t v : half_face_vertices(mesh, hf)) {
       if (v >= nv)
-        throw Error(ErrorKind::BadInput, "", 0, "boundary face references vertex " + std::to_string(v) +
+        throw Error(ErrorKind::BadInput, "boundary face references vertex " + std::to_string(v) +
                                                     " out of range");
       on_boundary[v] = 1;
     }

@@ -16,6 +16,8 @@ Error::Error(ErrorKind kind, std::string file, std::size_t line, std::string rea
     : std::runtime_error(format_error(file, line, reason)),
       kind_(kind), file_(std::move(file)), line_(line), reason_(std::move(reason)) {}
 
+Error::Error(ErrorKind kind, std::string reason) : Error(kind, std::string(), 0, std::move(reason)) {}
+
 void throw_bad_input(const std::string& file, std::size_t line, const std::string& reason) {
   throw Error(ErrorKind::BadInput, file, line, reason);
 }

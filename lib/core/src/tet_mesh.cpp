@@ -18,8 +18,8 @@ namespace {
 
 constexpr std::uint32_t kNone = kInvalidIndex;
 
-[[noreturn]] void bad(const std::string& reason) { throw Error(ErrorKind::BadInput, "", 0, reason); }
-[[noreturn]] void failed(const std::string& reason) { throw Error(ErrorKind::Failed, "", 0, reason); }
+[[noreturn]] void bad(const std::string& reason) { throw Error(ErrorKind::BadInput, reason); }
+[[noreturn]] void failed(const std::string& reason) { throw Error(ErrorKind::Failed, reason); }
 
 std::string triple(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   return "(" + std::to_string(a) + "," + std::to_string(b) + "," + std::to_string(c) + ")";

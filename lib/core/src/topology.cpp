@@ -45,10 +45,10 @@ std::string fmt(std::size_t n) { return std::to_string(n); }
 
 TopologyReport analyze_topology(const TetMeshData& data) {
   TopologyReport r;
-  if (data.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "vertex coordinate array size is not a multiple of 3");
-  if (data.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "", 0, "tet array size is not a multiple of 4");
+  if (data.xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, "vertex coordinate array size is not a multiple of 3");
+  if (data.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "tet array size is not a multiple of 4");
   const std::size_t nv = data.num_vertices(), nt = data.num_tets();
-  if (nt > detail::kMaxGroupedTets) throw Error(ErrorKind::BadInput, "", 0, "too many tets (> 2^29)");
+  if (nt > detail::kMaxGroupedTets) throw Error(ErrorKind::BadInput, "too many tets (> 2^29)");
   r.num_vertices = nv;
   r.num_tets = nt;
   const std::uint32_t* tv = data.tets.data();
@@ -59,8 +59,7 @@ TopologyReport analyze_topology(const TetMeshData& data) {
     const std::uint32_t* p = tv + 4 * t;
     for (int i = 0; i < 4; ++i) {
       if (p[i] >= nv)
-        throw Error(ErrorKind::BadInput, "", 0,
-                    "tet " + std::to_string(t) + " references vertex " + std::to_string(p[i]) + " but there are " +
+        throw Error(ErrorKind::BadInput, "tet " + std::to_string(t) + " references vertex " + std::to_string(p[i]) + " but there are " +
                         std::to_string(nv) + " vertices");
       for (int j = 0; j < i; ++j)
         if (p[i] == p[j]) degenerate[t] = 1;
@@ -140,15 +139,14 @@ TopologyReport analyze_topology(const TetMeshData& data) {
 }
 
 SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris) {
-  if (tris.size() % 3 != 0) throw Error(ErrorKind::BadInput, "", 0, "triangle array size is not a multiple of 3");
-  if (num_vertices >= 0xFFFFFFFFu) throw Error(ErrorKind::Unsupported, "", 0, "too many vertices");
+  if (tris.size() % 3 != 0) throw Error(ErrorKind::BadInput, "triangle array size is not a multiple of 3");
+  if (num_vertices >= 0xFFFFFFFFu) throw Error(ErrorKind::Unsupported, "too many vertices");
   SurfaceTopology st;
   st.num_vertices = num_vertices;
   const std::size_t n_all = tris.size() / 3;
   for (std::size_t i = 0; i < tris.size(); ++i)
     if (tris[i] >= num_vertices)
-      throw Error(ErrorKind::BadInput, "", 0,
-                  "triangle " + fmt(i / 3) + " refers to vertex " + fmt(tris[i]) + " of " + fmt(num_vertices));
+      throw Error(ErrorKind::BadInput, "triangle " + fmt(i / 3) + " refers to vertex " + fmt(tris[i]) + " of " + fmt(num_vertices));
 
   // Valid triangles only.
   std::vector<std::uint32_t> valid;

@@ -25,8 +25,11 @@
 #include <volmap/io/atomic_file.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/io/io_surface.hpp>
+#include <volmap/io/output_paths.hpp>
 #include <volmap/io/read_notes.hpp>
+#include <volmap/io/temp_cleanup.hpp>
 
+#include <volmap/check/input_mesh.hpp>
 #include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
 #include <volmap/check/orientation.hpp>

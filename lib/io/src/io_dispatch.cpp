@@ -23,6 +23,14 @@ TetMeshFormat tet_mesh_format(const std::string& path) {
   return TetMeshFormat::Unknown;
 }
 
+void require_tet_mesh_extension(const std::string& path, bool for_writing) {
+  const TetMeshFormat f = tet_mesh_format(path);
+  if (f == TetMeshFormat::Unknown)
+    throw Error(ErrorKind::Unsupported, path, 0, std::string("unknown tet mesh extension (") + kKnownReadExtensions + ")");
+  if (for_writing && f == TetMeshFormat::Ovm)
+    throw Error(ErrorKind::Unsupported, path, 0, "cannot write .ovm (read-only format; write .mesh, .vtk, .vtu or .msh)");
+}
+
 const char* tet_mesh_format_name(TetMeshFormat format) {
   switch (format) {
     case TetMeshFormat::Medit: return "mesh";
@@ -57,16 +65,21 @@ TetMeshData read_tet_mesh(const std::string& path, TetMeshReadNotes& notes) {
 void write_tet_mesh(const std::string& path, const TetMeshData& mesh) { write_tet_mesh(path, mesh, TetMeshWriteOptions{}); }
 
 void write_tet_mesh(const std::string& path, const TetMeshData& mesh, const TetMeshWriteOptions& options) {
-  switch (tet_mesh_format(path)) {
-    case TetMeshFormat::Medit: write_medit(path, mesh); return;
-    case TetMeshFormat::Vtk: write_vtk(path, mesh, options.vtk_binary); return;
-    case TetMeshFormat::Vtu: write_vtu(path, mesh, {}, options.vtu_encoding); return;
-    case TetMeshFormat::Msh: write_msh(path, mesh, options.msh_encoding); return;
-    case TetMeshFormat::Ovm:
-      throw Error(ErrorKind::Unsupported, path, 0, "cannot write .ovm (read-only format; write .mesh, .vtk, .vtu or .msh)");
+  require_tet_mesh_extension(path, /*for_writing=*/true);
+  AtomicOutput out(path);
+  write_tet_mesh(out, mesh, options);
+  out.commit();
+}
+
+void write_tet_mesh(AtomicOutput& out, const TetMeshData& mesh, const TetMeshWriteOptions& options) {
+  require_tet_mesh_extension(out.destination(), /*for_writing=*/true);
+  switch (tet_mesh_format(out.destination())) {
+    case TetMeshFormat::Medit: write_medit(out, mesh); return;
+    case TetMeshFormat::Vtk: write_vtk(out, mesh, options.vtk_binary); return;
+    case TetMeshFormat::Vtu: write_vtu(out, mesh, {}, options.vtu_encoding); return;
+    case TetMeshFormat::Msh: write_msh(out, mesh, options.msh_encoding); return;
     default: break;
   }
-  throw Error(ErrorKind::Unsupported, path, 0, "unknown tet mesh extension (expected .mesh, .vtk, .vtu or .msh)");
 }
 
 }  // namespace volmap

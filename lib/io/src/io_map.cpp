@@ -37,7 +37,8 @@ std::size_t split_line(const char* begin, const char* end, std::string_view* out
 }  // namespace
 
 BoundaryMap read_boundary_map(const std::string& path) {
-  const std::string data = io_detail::read_whole_file(path);
+  // A line holds 4 numbers of at most kMaxNumberChars each: anything much longer is not a map.
+  const std::string data = io_detail::read_whole_file(path, {/*text=*/true, 0, /*max_line=*/1 << 16});
   BoundaryMap map;
   // Upper bound of entries: a line holds at least 8 bytes ("v x y z\n"); reserve conservatively.
   const std::size_t lines_estimate = static_cast<std::size_t>(std::count(data.begin(), data.end(), '\n')) + 1;
@@ -86,7 +87,8 @@ BoundaryMap read_boundary_map(const std::string& path) {
   return map;
 }
 
-void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrecision precision) {
+void write_boundary_map(AtomicOutput& out, const BoundaryMap& map, MapPrecision precision) {
+  const std::string& path = out.destination();
   if (map.xyz.size() != 3 * map.vids.size())
     throw Error(ErrorKind::BadInput, path, 0, "cannot write: map xyz size is not 3 * number of vids");
   for (double c : map.xyz)
@@ -94,7 +96,6 @@ void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrec
   std::vector<std::uint32_t> order(map.vids.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return map.vids[a] < map.vids[b]; });
-  AtomicOutput out(path);
   io_detail::TextWriter w(out);
   for (std::uint32_t k : order) {
     w.put_int(map.vids[k]);
@@ -108,6 +109,11 @@ void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrec
     w.put('\n');
   }
   w.flush();
+}
+
+void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrecision precision) {
+  AtomicOutput out(path);
+  write_boundary_map(out, map, precision);
   out.commit();
 }
 
@@ -140,7 +146,7 @@ void validate_boundary_map(const BoundaryMap& map, const TetMeshData& mesh, cons
 // ---- rationals ----
 
 std::vector<Rational> read_rationals(const std::string& path, std::size_t expected_vertices) {
-  const std::string data = io_detail::read_whole_file(path);
+  const std::string data = io_detail::read_whole_file(path, {/*text=*/true});
   if (expected_vertices > std::numeric_limits<std::size_t>::max() / 6)
     throw_bad_input(path, 0, "expected vertex count too large");
   const std::size_t expected = 3 * expected_vertices;
@@ -192,9 +198,9 @@ std::vector<Rational> read_rationals(const std::string& path, std::size_t expect
   return values;
 }
 
-void write_rationals(const std::string& path, const std::vector<Rational>& xyz) {
+void write_rationals(AtomicOutput& out, const std::vector<Rational>& xyz) {
+  const std::string& path = out.destination();
   if (xyz.size() % 3 != 0) throw Error(ErrorKind::BadInput, path, 0, "cannot write: value count is not a multiple of 3");
-  AtomicOutput out(path);
   io_detail::TextWriter w(out);
   std::string text;
   for (const Rational& r : xyz) {
@@ -206,6 +212,11 @@ void write_rationals(const std::string& path, const std::vector<Rational>& xyz) 
     w.put('\n');
   }
   w.flush();
+}
+
+void write_rationals(const std::string& path, const std::vector<Rational>& xyz) {
+  AtomicOutput out(path);
+  write_rationals(out, xyz);
   out.commit();
 }
 

@@ -43,7 +43,7 @@ std::string truncated(const char* section, std::size_t index, std::size_t count)
 }  // namespace
 
 TetMeshData read_medit(const std::string& path) {
-  const io_detail::FileBytes data = io_detail::read_file_bytes(path);
+  const io_detail::FileBytes data = io_detail::read_file_bytes(path, {/*text=*/true});
   Tokenizer tok(data.begin(), data.end(), /*hash_comments=*/true);
   TetMeshData mesh;
   bool have_vertices = false, have_tets = false;
@@ -197,12 +197,12 @@ TetMeshData read_medit(const std::string& path) {
   return mesh;
 }
 
-void write_medit(const std::string& path, const TetMeshData& mesh) {
+void write_medit(AtomicOutput& out, const TetMeshData& mesh) {
+  const std::string& path = out.destination();
   const std::size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
   io_detail::check_mesh_writable(mesh, path);
   const bool vlabels = mesh.vertex_labels.size() == nv;
   const bool tlabels = mesh.tet_labels.size() == nt;
-  AtomicOutput out(path);
   io_detail::TextWriter w(out);
   w.put("MeshVersionFormatted 1\nDimension 3\nVertices\n");
   w.put_int(static_cast<std::int64_t>(nv));
@@ -228,6 +228,11 @@ void write_medit(const std::string& path, const TetMeshData& mesh) {
   }
   w.put("End\n");
   w.flush();
+}
+
+void write_medit(const std::string& path, const TetMeshData& mesh) {
+  AtomicOutput out(path);
+  write_medit(out, mesh);
   out.commit();
 }
 

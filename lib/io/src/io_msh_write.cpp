@@ -173,6 +173,13 @@ void write_vertex_labels(MshOut& out, const TetMeshData& mesh) {
 }  // namespace
 
 void write_msh(const std::string& path, const TetMeshData& mesh, MshEncoding encoding) {
+  AtomicOutput file(path);
+  write_msh(file, mesh, encoding);
+  file.commit();
+}
+
+void write_msh(AtomicOutput& file, const TetMeshData& mesh, MshEncoding encoding) {
+  const std::string& path = file.destination();
   io_detail::check_mesh_writable(mesh, path);
   if (mesh.num_vertices() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw Error(ErrorKind::Unsupported, path, 0, "cannot write: more vertices than $NodeData's 32-bit node tags can name");
@@ -181,7 +188,6 @@ void write_msh(const std::string& path, const TetMeshData& mesh, MshEncoding enc
   const std::vector<VolumeEntity> entities = volume_entities(mesh, entity_of_tet);
   const bool vertex_labels = std::any_of(mesh.vertex_labels.begin(), mesh.vertex_labels.end(), [](std::int32_t l) { return l != 0; });
 
-  AtomicOutput file(path);
   io_detail::TextWriter w(file);
   w.put(binary ? "$MeshFormat\n4.1 1 8\n" : "$MeshFormat\n4.1 0 8\n");
   if (binary) w.put(std::string_view("\x01\x00\x00\x00\n", 5));
@@ -192,7 +198,6 @@ void write_msh(const std::string& path, const TetMeshData& mesh, MshEncoding enc
   write_elements(out, mesh, entity_of_tet);
   if (vertex_labels) write_vertex_labels(out, mesh);
   w.flush();
-  file.commit();
 }
 
 }  // namespace volmap

@@ -1,14 +1,10 @@
-// Surface IO through OpenMesh (see io_surface.hpp). A PolyMesh with double-precision points is
-// filled by OpenMesh's readers, then flattened with a first-corner fan triangulation.
+// Surface IO (see io_surface.hpp): OFF, OBJ, PLY and STL parsed and written here, polygons flattened
+// with a first-corner fan triangulation.
 #include <volmap/io/atomic_file.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/io/io_surface.hpp>
 
 #include "io_text.hpp"
-
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -16,16 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <unistd.h>
 
 namespace volmap {
 namespace {
-
-struct DoubleTraits : public OpenMesh::DefaultTraits {
-  typedef OpenMesh::Vec3d Point;
-  typedef OpenMesh::Vec3d Normal;
-};
-using PolyMeshD = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
 std::string lower_extension(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -36,27 +25,7 @@ std::string lower_extension(const std::string& path) {
 
 bool supported(const std::string& ext) { return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply"; }
 
-// Mutes OpenMesh's omlog/omout/omerr for the scope (the library never prints).
-class MuteOpenMesh {
- public:
-  MuteOpenMesh()
-      : log_(omlog().is_enabled()), out_(omout().is_enabled()), err_(omerr().is_enabled()) {
-    omlog().disable();
-    omout().disable();
-    omerr().disable();
-  }
-  ~MuteOpenMesh() {
-    if (log_) omlog().enable();
-    if (out_) omout().enable();
-    if (err_) omerr().enable();
-  }
-
- private:
-  bool log_, out_, err_;
-};
-
-
-// ---------- text formats parsed here (OpenMesh 9's OFF/OBJ readers round coordinates to float) ----
+// ---------- text formats ----
 
 using io_detail::Token;
 
@@ -343,32 +312,107 @@ SurfaceData read_ply(const std::string& path, const std::string& data) {
   return s;
 }
 
-SurfaceData read_stl_openmesh(const std::string& path) {
-  PolyMeshD mesh;
-  OpenMesh::IO::Options options;
-  bool ok;
-  {
-    MuteOpenMesh mute;
-    ok = OpenMesh::IO::read_mesh(mesh, path, options);
+// STL. Binary: an 80-byte header, a uint32 triangle count n, then n records of 50 bytes (normal,
+// three corners as float32, a 2-byte attribute); the file must be exactly 84 + 50 n bytes. ASCII:
+// `solid` ... `facet normal` / `outer loop` / three `vertex x y z` / `endloop` / `endfacet` ...
+// A file is binary when its size matches its count, ASCII when it starts with `solid` otherwise.
+// Corners are welded into vertices by exact coordinates, numbered in order of first appearance.
+void weld_corners(SurfaceData& s, const std::vector<double>& corners) {
+  const std::size_t n = corners.size() / 3;
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t k = 0; k < n; ++k) order[k] = k;
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    for (int c = 0; c < 3; ++c)
+      if (corners[3 * a + c] != corners[3 * b + c]) return corners[3 * a + c] < corners[3 * b + c];
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<std::uint32_t> first(n);  // the first corner at the same position
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool same = k > 0 && std::equal(&corners[3 * order[k]], &corners[3 * order[k]] + 3, &corners[3 * order[k - 1]]);
+    first[order[k]] = same ? first[order[k - 1]] : order[k];
   }
-  if (!ok) throw_bad_input(path, 0, "OpenMesh could not parse the STL file");
-  SurfaceData out;
-  out.xyz.resize(3 * mesh.n_vertices());
-  for (const auto vh : mesh.vertices()) {
-    const auto& p = mesh.point(vh);
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(p[c])) throw_bad_input(path, 0, "non-finite coordinate at vertex " + std::to_string(vh.idx()));
-      out.xyz[3 * static_cast<std::size_t>(vh.idx()) + c] = p[c];
+  std::vector<std::uint32_t> id(n, 0xFFFFFFFFu);
+  s.tris.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    std::uint32_t& v = id[first[k]];
+    if (v == 0xFFFFFFFFu) {
+      v = static_cast<std::uint32_t>(s.xyz.size() / 3);
+      s.xyz.insert(s.xyz.end(), &corners[3 * k], &corners[3 * k] + 3);
     }
+    s.tris[k] = v;
   }
-  std::vector<std::uint32_t> corners;
-  for (const auto fh : mesh.faces()) {
-    corners.clear();
-    for (const auto vh : mesh.fv_range(fh)) corners.push_back(static_cast<std::uint32_t>(vh.idx()));
-    add_polygon(out, corners);
+}
+
+SurfaceData read_stl(const std::string& path, const std::string& data) {
+  std::vector<double> corners;
+  std::uint32_t count = 0;
+  if (data.size() >= 84) std::memcpy(&count, data.data() + 80, 4);  // little-endian hosts only (as every writer)
+  const bool binary = data.size() >= 84 && data.size() == 84 + 50 * std::uint64_t(count);
+  std::size_t text_start = data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  while (text_start < data.size() && io_detail::is_space(data[text_start])) ++text_start;
+  if (binary) {
+    corners.reserve(9 * std::size_t(count));
+    for (std::size_t t = 0; t < count; ++t) {
+      const char* record = data.data() + 84 + 50 * t;
+      for (int k = 0; k < 9; ++k) {
+        float f;
+        std::memcpy(&f, record + 12 + 4 * k, 4);
+        if (!std::isfinite(f))
+          throw_bad_input(path, 0, "binary STL triangle " + std::to_string(t) + ": non-finite corner coordinate");
+        corners.push_back(f);
+      }
+    }
+  } else if (data.compare(text_start, 5, "solid") == 0) {
+    io_detail::Tokenizer tok(data.data() + text_start, data.data() + data.size(), false);
+    Token t;
+    std::size_t in_facet = 0;  // corners seen in the current facet
+    while (tok.next(t)) {
+      if (t.text == "vertex") {
+        if (++in_facet > 3) throw_bad_input(path, t.line, "ASCII STL facet with more than 3 vertices");
+        for (int c = 0; c < 3; ++c) {
+          Token x;
+          if (!tok.next(x)) throw_bad_input(path, t.line, "ASCII STL truncated inside a vertex");
+          corners.push_back(io_detail::expect_double(x, path, "STL vertex coordinate"));
+        }
+      } else if (t.text == "endfacet") {
+        if (in_facet != 3) throw_bad_input(path, t.line, "ASCII STL facet with " + std::to_string(in_facet) + " vertices");
+        in_facet = 0;
+      }
+    }
+    if (in_facet != 0) throw_bad_input(path, tok.last_line(), "ASCII STL truncated inside a facet");
+  } else if (data.size() >= 84) {
+    throw_bad_input(path, 0, "binary STL announces " + std::to_string(count) + " triangles (" +
+                                 std::to_string(84 + 50 * std::uint64_t(count)) + " bytes) but the file has " +
+                                 std::to_string(data.size()) + " bytes (truncated or not an STL file)");
+  } else {
+    throw_bad_input(path, 0, "neither an ASCII STL (no 'solid') nor a binary one (" + std::to_string(data.size()) +
+                                 " bytes, fewer than the 84-byte header)");
   }
-  if (out.tris.empty()) throw_bad_input(path, 0, "no faces");
-  return out;
+  if (corners.empty()) throw_bad_input(path, 0, "no triangles");
+  SurfaceData s;
+  weld_corners(s, corners);
+  return s;
+}
+
+void write_stl(AtomicOutput& out, const SurfaceData& surface) {
+  std::string bytes(80, ' ');
+  bytes.replace(0, 24, "binary STL written by volmap");
+  bytes.resize(80, ' ');
+  const std::uint32_t count = static_cast<std::uint32_t>(surface.num_triangles());
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (std::size_t t = 0; t < surface.num_triangles(); ++t) {
+    float f[12];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) f[3 + 3 * k + c] = static_cast<float>(surface.xyz[3 * surface.tris[3 * t + k] + c]);
+    const float u[3] = {f[6] - f[3], f[7] - f[4], f[8] - f[5]}, v[3] = {f[9] - f[3], f[10] - f[4], f[11] - f[5]};
+    f[0] = u[1] * v[2] - u[2] * v[1], f[1] = u[2] * v[0] - u[0] * v[2], f[2] = u[0] * v[1] - u[1] * v[0];
+    const float len = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int c = 0; c < 3; ++c) f[c] = len > 0 && std::isfinite(len) ? f[c] / len : 0.0f;
+    bytes.append(reinterpret_cast<const char*>(f), sizeof f);
+    bytes.append(2, '\0');
+  }
+  write_text(out, bytes);
 }
 
 }  // namespace
@@ -376,18 +420,23 @@ SurfaceData read_stl_openmesh(const std::string& path) {
 SurfaceData read_surface(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (!supported(ext)) throw Error(ErrorKind::Unsupported, path, 0, "unknown surface extension (expected .obj, .off, .stl or .ply)");
-  const std::string data = io_detail::read_whole_file(path);  // Io errors: missing, directory
+  io_detail::ReadOptions options;
+  options.text = ext == ".off" || ext == ".obj";
+  options.text_prefix = ext == ".ply" ? 16 : 0;
+  options.strip_bom = ext != ".stl";  // a binary STL header may start with any bytes
+  const std::string data = io_detail::read_whole_file(path, options);  // Io errors: missing, directory
   if (data.empty()) throw_bad_input(path, 0, "empty file");
   SurfaceData s = ext == ".off"   ? read_off(path, data)
                   : ext == ".obj" ? read_obj(path, data)
                   : ext == ".ply" ? read_ply(path, data)
-                                  : read_stl_openmesh(path);
+                                  : read_stl(path, data);
   for (std::uint32_t v : s.tris)
     if (v >= s.num_vertices()) throw_bad_input(path, 0, "face references a missing vertex");
   return s;
 }
 
-void write_surface(const std::string& path, const SurfaceData& surface) {
+void write_surface(AtomicOutput& out, const SurfaceData& surface) {
+  const std::string& path = out.destination();
   const std::string ext = lower_extension(path);
   if (!supported(ext)) throw Error(ErrorKind::Unsupported, path, 0, "unknown surface extension (expected .obj, .off, .stl or .ply)");
   const std::size_t nv = surface.num_vertices();
@@ -397,9 +446,12 @@ void write_surface(const std::string& path, const SurfaceData& surface) {
     if (!std::isfinite(c)) throw Error(ErrorKind::BadInput, path, 0, "cannot write: non-finite coordinate");
   for (std::uint32_t v : surface.tris)
     if (v >= nv) throw Error(ErrorKind::BadInput, path, 0, "cannot write: triangle references vertex " + std::to_string(v));
-  if (ext != ".stl") {
-    // OFF / OBJ / PLY written here: shortest round-trip doubles (OFF, OBJ) or raw float64 (PLY).
-    AtomicOutput out(path);
+  if (ext == ".stl") {
+    write_stl(out, surface);
+    return;
+  }
+  {
+    // OFF / OBJ / PLY: shortest round-trip doubles (OFF, OBJ) or raw float64 (PLY).
     io_detail::TextWriter w(out);
     const std::size_t nt = surface.num_triangles();
     if (ext == ".ply") {
@@ -448,47 +500,13 @@ void write_surface(const std::string& path, const SurfaceData& surface) {
       }
     }
     w.flush();
-    out.commit();
-    return;
   }
-  // STL (binary, float by the format) through OpenMesh.
-  PolyMeshD mesh;
-  std::vector<PolyMeshD::VertexHandle> handles(nv);
-  for (std::size_t i = 0; i < nv; ++i)
-    handles[i] = mesh.add_vertex(PolyMeshD::Point(surface.xyz[3 * i], surface.xyz[3 * i + 1], surface.xyz[3 * i + 2]));
-  {
-    MuteOpenMesh mute;
-    for (std::size_t t = 0; t < surface.num_triangles(); ++t) {
-      const auto f = mesh.add_face(handles[surface.tris[3 * t]], handles[surface.tris[3 * t + 1]], handles[surface.tris[3 * t + 2]]);
-      if (!f.is_valid())
-        throw Error(ErrorKind::Unsupported, path, 0,
-                    "cannot write: triangle " + std::to_string(t) + " makes the surface non-manifold (OpenMesh refuses it)");
-    }
-  }
-  // OpenMesh picks the writer from the file name: write to a temporary name with the same extension
-  // in the destination folder, then rename (atomic like AtomicOutput).
-  const std::filesystem::path dest(path);
-  std::filesystem::path dir = dest.parent_path();
-  if (dir.empty()) dir = ".";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) throw_io(path, "output folder does not exist");
-  const std::filesystem::path tmp = dir / ("." + dest.stem().string() + ".tmp." + std::to_string(::getpid()) + ext);
-  OpenMesh::IO::Options options;
-  options += OpenMesh::IO::Options::Binary;
-  bool ok;
-  {
-    MuteOpenMesh mute;
-    ok = OpenMesh::IO::write_mesh(mesh, tmp.string(), options, 17);
-  }
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    throw_io(path, "OpenMesh could not write the file");
-  }
-  std::filesystem::rename(tmp, dest, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw_io(path, "cannot rename output into place");
-  }
+}
+
+void write_surface(const std::string& path, const SurfaceData& surface) {
+  AtomicOutput out(path);
+  write_surface(out, surface);
+  out.commit();
 }
 
 }  // namespace volmap

@@ -1,6 +1,9 @@
 // Shared text IO helpers (see io_text.hpp): file loading, strict number parsing, buffered writing.
 #include "io_text.hpp"
 
+#include <volmap/io/io.hpp>
+
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <algorithm>
@@ -11,39 +14,110 @@
 #include <limits>
 #include <system_error>
 
+namespace volmap {
+
+std::string read_text_file(const std::string& path, std::size_t max_line_bytes) {
+  io_detail::ReadOptions options;
+  options.text = true;
+  options.max_line = max_line_bytes;
+  return io_detail::read_whole_file(path, options);
+}
+
+}  // namespace volmap
+
 namespace volmap::io_detail {
 
-std::string read_whole_file(const std::string& path) {
+namespace {
+
+// Vets the bytes [from, data.size()) of a file being read (see ReadOptions). `line_start` is the
+// offset where the current line began; `line` its 1-based number.
+void vet_block(const std::string& path, const std::string& data, std::size_t from, const ReadOptions& options,
+               std::size_t& line_start, std::size_t& line) {
+  const std::size_t prefix_end = std::min(data.size(), options.text_prefix);
+  if (from < prefix_end && std::memchr(data.data() + from, '\0', prefix_end - from))
+    throw_bad_input(path, 0, "binary data (a NUL byte) in the header: not a file of this format");
+  if (options.max_line == 0) {  // fast path: only NUL bytes matter
+    const void* nul = options.text ? std::memchr(data.data() + from, '\0', data.size() - from) : nullptr;
+    if (nul)
+      throw_bad_input(path, 0, "binary data (a NUL byte at offset " +
+                                   std::to_string(static_cast<const char*>(nul) - data.data()) + "): not a text file");
+    return;
+  }
+  for (std::size_t k = from; k < data.size(); ++k) {
+    const char c = data[k];
+    if (c == '\n') {
+      ++line;
+      line_start = k + 1;
+    } else if (c == '\0' && options.text) {
+      throw_bad_input(path, line, "binary data (a NUL byte at offset " + std::to_string(k) + "): not a text file");
+    } else if (options.max_line && k - line_start >= options.max_line) {
+      throw_bad_input(path, line, "line longer than " + std::to_string(options.max_line) + " bytes: not a file of this format");
+    }
+  }
+}
+
+}  // namespace
+
+std::string read_whole_file(const std::string& path, const ReadOptions& options) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw_io(path, "is a directory, not a file");
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) throw_io(path, "is a directory, not a file");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
+  struct Closer {
+    std::FILE* f;
+    ~Closer() { std::fclose(f); }
+  } closer{f};
+  const bool regular = fs::is_regular_file(status);
+  const std::uintmax_t announced = regular ? fs::file_size(path, ec) : 0;
+  const std::size_t limit = regular ? std::numeric_limits<std::size_t>::max() : kMaxStreamBytes;
   std::string data;
-  // One read of the announced size, then whatever else arrives (pipes, growing files).
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > 0) {
-    data.resize(static_cast<std::size_t>(size));
-    data.resize(std::fread(data.data(), 1, data.size(), f));
+  std::size_t line_start = 0, line = 1;
+  bool sized = false;
+  try {
+    // Blocks of 64 KiB, each vetted as it arrives; once the first block passed, a regular file's
+    // announced size is allocated at once.
+    constexpr std::size_t kBlock = 1 << 16;
+    while (true) {
+      if (!sized && data.size() >= kBlock && announced > data.size()) {
+        data.reserve(static_cast<std::size_t>(announced) + 1);
+        sized = true;
+      }
+      const std::size_t before = data.size();
+      const std::size_t want = sized && announced > before ? static_cast<std::size_t>(announced) - before : kBlock;
+      data.resize(before + std::max<std::size_t>(want, 1));
+      const std::size_t got = std::fread(data.data() + before, 1, data.size() - before, f);
+      data.resize(before + got);
+      if (got == 0) break;
+      if (options.strip_bom && before == 0 && data.size() >= 3 && data.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+        data.erase(0, 3);  // a UTF-8 byte-order mark carries nothing
+      }
+      vet_block(path, data, std::min(before, data.size()), options, line_start, line);
+      if (data.size() > limit)
+        throw_io(path, "is a stream longer than " + std::to_string(limit >> 20) + " MiB: refusing to read more");
+    }
+  } catch (const std::bad_alloc&) {
+    throw_io(path, "out of memory after reading " + std::to_string(data.size()) + " bytes (file too large)");
   }
-  char chunk[1 << 16];
-  std::size_t got;
-  while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.append(chunk, got);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw_io(path, "read error");
+  if (std::ferror(f)) throw_io(path, "read error");
   return data;
 }
 
-FileBytes read_file_bytes(const std::string& path) {
+namespace {
+FileBytes copy_to_file_bytes(const std::string& data) {
+  FileBytes f{HugeBuffer<char>(data.size()), data.size()};
+  std::copy(data.begin(), data.end(), f.bytes.data());
+  return f;
+}
+}  // namespace
+
+FileBytes read_file_bytes(const std::string& path, const ReadOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw_io(path, "is a directory, not a file");
   const auto size = std::filesystem::file_size(path, ec);
-  if (ec || size == 0) {  // pipes, special files, empty files: the general reader, then one copy
-    const std::string data = read_whole_file(path);
-    FileBytes f{HugeBuffer<char>(data.size()), data.size()};
-    std::copy(data.begin(), data.end(), f.bytes.data());
-    return f;
-  }
+  // Pipes, special files, empty files and line-length limits: the general reader, then one copy.
+  if (ec || size == 0 || options.max_line != 0) return copy_to_file_bytes(read_whole_file(path, options));
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
   // One more byte than announced: a file that grew since the size query is detected and re-read.
@@ -52,10 +126,16 @@ FileBytes read_file_bytes(const std::string& path) {
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);
   if (failed) throw_io(path, "read error");
-  if (f.size > size) {
-    const std::string data = read_whole_file(path);
-    f = FileBytes{HugeBuffer<char>(data.size()), data.size()};
-    std::copy(data.begin(), data.end(), f.bytes.data());
+  if (f.size > size) return copy_to_file_bytes(read_whole_file(path, options));
+  const char* data = f.bytes.data();
+  if (options.strip_bom && f.size >= 3 && std::memcmp(data, "\xEF\xBB\xBF", 3) == 0) f.start = 3;
+  const std::size_t prefix_end = std::min(f.size, f.start + options.text_prefix);
+  if (std::memchr(data + f.start, '\0', prefix_end - f.start))
+    throw_bad_input(path, 0, "binary data (a NUL byte) in the header: not a file of this format");
+  if (options.text) {
+    if (const void* nul = std::memchr(data + f.start, '\0', f.size - f.start))
+      throw_bad_input(path, 0, "binary data (a NUL byte at offset " +
+                                   std::to_string(static_cast<const char*>(nul) - data - f.start) + "): not a text file");
   }
   return f;
 }

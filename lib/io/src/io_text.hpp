@@ -23,18 +23,31 @@ namespace volmap::io_detail {
 // significant digits; longer tokens are rejected as malformed rather than parsed).
 inline constexpr std::size_t kMaxNumberChars = 1100;
 
-// Reads a whole file. Throws Error(Io) when it is missing, a directory or unreadable.
-std::string read_whole_file(const std::string& path);
+// How read_whole_file vets what it reads, before allocating for the rest of the file.
+struct ReadOptions {
+  bool text = false;             // a NUL byte anywhere is refused ("binary data in a text file")
+  std::size_t text_prefix = 0;   // binary formats with a text header: no NUL in the first bytes
+  std::size_t max_line = 0;      // longest line accepted (0 = unbounded)
+  bool strip_bom = true;         // a leading UTF-8 byte-order mark is dropped
+};
+// Streams (FIFOs, character devices) are read up to this many bytes; larger ones are refused.
+inline constexpr std::size_t kMaxStreamBytes = std::size_t(1) << 30;
+
+// Reads a whole file. Throws Error(Io) when it is missing, a directory, unreadable or a stream
+// longer than kMaxStreamBytes, Error(BadInput) when the content breaks `options` (checked as the
+// bytes arrive, so /dev/zero or a huge sparse file is refused after its first block).
+std::string read_whole_file(const std::string& path, const ReadOptions& options = {});
 
 // The same into a buffer mapped before the read (huge_pages.hpp): no zero fill, no page faults (the
-// large text readers' path). Bytes [0, size) of `bytes`.
+// large text readers' path), vetted by the same `options`. Bytes [start, size) of `bytes`.
 struct FileBytes {
   HugeBuffer<char> bytes;
   std::size_t size = 0;
-  const char* begin() const { return bytes.data(); }
+  std::size_t start = 0;  // past a stripped byte-order mark
+  const char* begin() const { return bytes.data() + start; }
   const char* end() const { return bytes.data() + size; }
 };
-FileBytes read_file_bytes(const std::string& path);
+FileBytes read_file_bytes(const std::string& path, const ReadOptions& options = {});
 
 struct Token {
   std::string_view text;

@@ -484,17 +484,17 @@ bool any_nonzero(const std::vector<std::int32_t>& v) {
 }  // namespace
 
 TetMeshData read_vtk(const std::string& path) {
-  const std::string data = io_detail::read_whole_file(path);
+  const std::string data = io_detail::read_whole_file(path, {/*text=*/false, /*text_prefix=*/32});
   VtkReader reader(path, data);
   return reader.read();
 }
 
-void write_vtk(const std::string& path, const TetMeshData& mesh, bool binary) {
+void write_vtk(AtomicOutput& out, const TetMeshData& mesh, bool binary) {
+  const std::string& path = out.destination();
   io_detail::check_mesh_writable(mesh, path);
   const std::size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
   if (nv > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) || 5 * nt > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw Error(ErrorKind::Unsupported, path, 0, "mesh too large for the legacy VTK 4.x layout (int32 ids)");
-  AtomicOutput out(path);
   io_detail::TextWriter w(out);
   w.put("# vtk DataFile Version 4.2\nvolmap tet mesh\n");
   w.put(binary ? "BINARY\n" : "ASCII\n");
@@ -562,6 +562,11 @@ void write_vtk(const std::string& path, const TetMeshData& mesh, bool binary) {
     put_int32_block([&](std::size_t i) { return mesh.vertex_labels[i]; }, nv, 1);
   }
   w.flush();
+}
+
+void write_vtk(const std::string& path, const TetMeshData& mesh, bool binary) {
+  AtomicOutput out(path);
+  write_vtk(out, mesh, binary);
   out.commit();
 }
 

@@ -514,13 +514,13 @@ std::string xml_escape(const std::string& s) {
 }  // namespace
 
 TetMeshData read_vtu(const std::string& path) {
-  const std::string data = io_detail::read_whole_file(path);
+  const std::string data = io_detail::read_whole_file(path, {/*text=*/false, /*text_prefix=*/32});
   VtuReader reader(path, data);
   return reader.read(nullptr);
 }
 
 TetMeshData read_vtu(const std::string& path, std::vector<CellDataArray>& cell_data) {
-  const std::string data = io_detail::read_whole_file(path);
+  const std::string data = io_detail::read_whole_file(path, {/*text=*/false, /*text_prefix=*/32});
   VtuReader reader(path, data);
   return reader.read(&cell_data);
 }
@@ -529,8 +529,9 @@ void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vect
   write_vtu(path, mesh, cell_data, VtuEncoding::AppendedRaw);
 }
 
-void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
+void write_vtu(AtomicOutput& out, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
                VtuEncoding encoding) {
+  const std::string& path = out.destination();
   io_detail::check_mesh_writable(mesh, path);
   const std::size_t nv = mesh.num_vertices(), nt = mesh.num_tets();
   for (const CellDataArray& a : cell_data) {
@@ -546,7 +547,6 @@ void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vect
   const bool tlabels = std::any_of(mesh.tet_labels.begin(), mesh.tet_labels.end(), [](std::int32_t x) { return x != 0; });
   const bool raw = encoding == VtuEncoding::AppendedRaw;
 
-  AtomicOutput out(path);
   io_detail::TextWriter w(out);
   std::uint64_t offset = 0;  // running offset into the appended block
   auto open_array = [&](const char* type, const std::string& name, int comps, std::size_t bytes) {
@@ -672,6 +672,12 @@ void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vect
   }
   w.put("</VTKFile>\n");
   w.flush();
+}
+
+void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
+               VtuEncoding encoding) {
+  AtomicOutput out(path);
+  write_vtu(out, mesh, cell_data, encoding);
   out.commit();
 }
 

@@ -14,9 +14,9 @@ namespace volmap {
 TetMeshData generate_kuhn_grid(std::size_t nx, std::size_t ny, std::size_t nz,
                                const std::function<bool(std::size_t, std::size_t, std::size_t)>& keep,
                                double spacing) {
-  if (nx == 0 || ny == 0 || nz == 0) throw Error(ErrorKind::BadInput, "", 0, "generate_kuhn_grid: empty grid");
+  if (nx == 0 || ny == 0 || nz == 0) throw Error(ErrorKind::BadInput, "generate_kuhn_grid: empty grid");
   const std::size_t sx = nx + 1, sy = ny + 1, sz = nz + 1;
-  if (6 * nx * ny * nz > (std::size_t(1) << 30)) throw Error(ErrorKind::BadInput, "", 0, "generate_kuhn_grid: too many tets");
+  if (6 * nx * ny * nz > (std::size_t(1) << 30)) throw Error(ErrorKind::BadInput, "generate_kuhn_grid: too many tets");
   // The 6 axis orders and their corner offsets (bit 0 = x, 1 = y, 2 = z).
   static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   std::array<std::array<int, 4>, 6> corners;

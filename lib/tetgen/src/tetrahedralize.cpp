@@ -125,8 +125,8 @@ std::string surface_topology_problem(const TriangleSurface& s) {
 
 TetMeshData tetrahedralize_surface(const TriangleSurface& s, const TetrahedralizeOptions& options) {
   const std::string problem = surface_topology_problem(s);
-  if (!problem.empty()) throw Error(ErrorKind::BadInput, "", 0, problem);
-  if (!options.coarse && !(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "", 0, "quality bound must be >= 1");
+  if (!problem.empty()) throw Error(ErrorKind::BadInput, problem);
+  if (!options.coarse && !(options.quality >= 1.0)) throw Error(ErrorKind::BadInput, "quality bound must be >= 1");
   tetgenio in, out;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(s.num_vertices());
@@ -156,14 +156,14 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   // process on bad input (typically self-intersecting surfaces). The child sends the result through a
   // pipe; a crash or an error code becomes Error(Failed) here.
   int fds[2];
-  if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "", 0, "cannot create a pipe for TetGen");
+  if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "cannot create a pipe for TetGen");
   std::fflush(stdout);
   std::fflush(stderr);
   const pid_t pid = fork();
   if (pid < 0) {
     close(fds[0]);
     close(fds[1]);
-    throw Error(ErrorKind::Failed, "", 0, "cannot fork for TetGen");
+    throw Error(ErrorKind::Failed, "cannot fork for TetGen");
   }
   if (pid == 0) {
     close(fds[0]);
@@ -217,15 +217,14 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   }
   std::int64_t header[3] = {-1, 0, 0};
   if (bytes.size() >= sizeof header) std::memcpy(header, bytes.data(), sizeof header);
-  if (header[0] > 0) throw Error(ErrorKind::Failed, "", 0, tetgen_reason(static_cast<int>(header[0])));
+  if (header[0] > 0) throw Error(ErrorKind::Failed, tetgen_reason(static_cast<int>(header[0])));
   if (WIFSIGNALED(status) || header[0] < 0)
-    throw Error(ErrorKind::Failed, "", 0,
-                "TetGen crashed on this surface (libtet aborts while cleaning up after an error; the usual "
-                "cause is a self-intersecting surface)");
+    throw Error(ErrorKind::Failed, "TetGen aborted on this surface (libtet aborts while cleaning up after an internal "
+                "error; its fixed tolerances reject near-degenerate or badly scaled features)");
   const std::size_t np = static_cast<std::size_t>(header[1]), ntet = static_cast<std::size_t>(header[2]);
-  if (ntet == 0) throw Error(ErrorKind::Failed, "", 0, "TetGen produced no tetrahedra");
+  if (ntet == 0) throw Error(ErrorKind::Failed, "TetGen produced no tetrahedra");
   if (bytes.size() != sizeof header + 24 * np + 16 * ntet)
-    throw Error(ErrorKind::Failed, "", 0, "TetGen's output was truncated");
+    throw Error(ErrorKind::Failed, "TetGen's output was truncated");
   TetMeshData m;
   m.xyz.resize(3 * np);
   std::memcpy(m.xyz.data(), bytes.data() + sizeof header, 24 * np);
@@ -240,11 +239,11 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
       std::int32_t id;
       std::memcpy(&id, ids + 4 * (4 * t + k), 4);
       if (id < 0 || static_cast<std::size_t>(id) >= np)
-        throw Error(ErrorKind::Failed, "", 0, "TetGen returned a bad vertex id");
+        throw Error(ErrorKind::Failed, "TetGen returned a bad vertex id");
       q[k] = static_cast<std::uint32_t>(id);
     }
     const int sgn = orient3d(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
-    if (sgn == 0) throw Error(ErrorKind::Failed, "", 0, "TetGen produced a degenerate tet " + std::to_string(t));
+    if (sgn == 0) throw Error(ErrorKind::Failed, "TetGen produced a degenerate tet " + std::to_string(t));
     if (sgn < 0) {
       std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive
       ++flipped;

@@ -1,6 +1,8 @@
 // volmap/core/error.hpp — the one error type of the library.
 // The library never prints, exits or asserts on bad input: it throws volmap::Error carrying the
 // file (or "" when not file-related), the 1-based line (0 when unknown) and a one-line reason.
+// Errors about arrays, options or algorithms that know no file use Error(kind, reason); a tool that
+// knows which file the arrays came from re-throws them naming it.
 #pragma once
 
 #include <cstddef>
@@ -19,6 +21,8 @@ enum class ErrorKind {
 class Error : public std::runtime_error {
  public:
   Error(ErrorKind kind, std::string file, std::size_t line, std::string reason);
+  // An error that names no file (file "" and line 0).
+  Error(ErrorKind kind, std::string reason);
   ErrorKind kind() const { return kind_; }
   const std::string& file() const { return file_; }
   std::size_t line() const { return line_; }

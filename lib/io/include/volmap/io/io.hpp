@@ -1,9 +1,12 @@
 // volmap/io/io.hpp — reading and writing tet meshes, boundary maps and rationals files.
 // All readers throw volmap::Error with file, line and reason (BadInput for malformed content, Io for
 // a missing/unreadable path or a directory, Unsupported for valid input outside what we handle);
-// they validate declared sizes against the file size before allocating. All writers are atomic
-// (temp file + rename; nothing appears on error) and print doubles in shortest round-trip form
-// (std::to_chars), so every double read back is bit-identical (like %.17g, but shorter).
+// they validate declared sizes against the file size before allocating, refuse binary data (NUL
+// bytes) in text formats and streams longer than 1 GiB as the bytes arrive, and ignore a leading
+// UTF-8 byte-order mark. All writers are atomic (temp file + rename; nothing appears on error; the
+// AtomicOutput overloads write into a prepared output, e.g. of an OutputTransaction, without
+// committing) and print doubles in shortest round-trip form (std::to_chars), so every double read
+// back is bit-identical.
 // Vertex ids in files: Medit 1-based, maps/VTK/VTU 0-based; in memory 0-based. Tet order and each
 // tet's vertex order are kept exactly as in the file (Gmsh and OpenVolumeMesh files come out in the
 // opposite orientation convention; the checks say so and `volmap-tetmesh-check --fix` flips them).
@@ -11,6 +14,7 @@
 
 #include <volmap/core/error.hpp>
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/io/atomic_file.hpp>
 #include <volmap/io/read_notes.hpp>
 #include <volmap/predicates_rational.hpp>
 
@@ -26,6 +30,7 @@ namespace volmap {
 // a non-zero count are Unsupported.
 TetMeshData read_medit(const std::string& path);
 void write_medit(const std::string& path, const TetMeshData& mesh);
+void write_medit(AtomicOutput& out, const TetMeshData& mesh);
 
 // Legacy VTK unstructured grid (ASCII or BINARY big-endian, 4.x and 5.1 layouts), tets only. Cells of
 // type 10 are kept in order, lower-dimensional cells (types 1-9) skipped, other types rejected
@@ -34,6 +39,7 @@ void write_medit(const std::string& path, const TetMeshData& mesh);
 // "label" in CELL_DATA/POINT_DATA when not all zero (read back by read_vtk).
 TetMeshData read_vtk(const std::string& path);
 void write_vtk(const std::string& path, const TetMeshData& mesh, bool binary = false);
+void write_vtk(AtomicOutput& out, const TetMeshData& mesh, bool binary = false);
 
 // VTK XML .vtu (read: ascii, inline base64, appended raw/base64, any byte order; compressed files
 // are Unsupported). Write: Float64 points, Int64 connectivity/offsets, UInt8 types, Int32 "label"
@@ -50,6 +56,8 @@ void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vect
 enum class VtuEncoding { AppendedRaw /* little-endian raw, UInt64 headers */, Ascii /* shortest round-trip doubles */ };
 void write_vtu(const std::string& path, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
                VtuEncoding encoding);
+void write_vtu(AtomicOutput& out, const TetMeshData& mesh, const std::vector<CellDataArray>& cell_data,
+               VtuEncoding encoding = VtuEncoding::AppendedRaw);
 
 // Gmsh .msh, versions 2.2 (also 2.0/2.1) and 4.1, ASCII or binary (either byte order, as the file's
 // endianness marker says; 4.1's data-size 4 or 8). Linear tetrahedra (type 4) are read in file order;
@@ -66,6 +74,7 @@ TetMeshData read_msh(const std::string& path, TetMeshReadNotes* notes = nullptr)
 // written in our vertex order, so Gmsh sees VOLMAP-positive tets as negative (see io.hpp header).
 enum class MshEncoding { Ascii, Binary };
 void write_msh(const std::string& path, const TetMeshData& mesh, MshEncoding encoding = MshEncoding::Ascii);
+void write_msh(AtomicOutput& out, const TetMeshData& mesh, MshEncoding encoding = MshEncoding::Ascii);
 
 // OpenVolumeMesh text format (`OVM ASCII`: Vertices, Edges, Faces as half-edge ids 2e/2e+1,
 // Polyhedra as half-face ids 2f/2f+1; property sections after Polyhedra are ignored). Every cell
@@ -79,6 +88,9 @@ TetMeshData read_ovm(const std::string& path);
 // anything else. .ovm is read-only.
 enum class TetMeshFormat { Medit, Vtk, Vtu, Msh, Ovm, Unknown };
 TetMeshFormat tet_mesh_format(const std::string& path);
+// Throws Error(Unsupported) naming `path` unless its extension names a format read_tet_mesh reads
+// (or, `for_writing`, one write_tet_mesh writes: .mesh, .vtk, .vtu, .msh). Tools check it before any work.
+void require_tet_mesh_extension(const std::string& path, bool for_writing = false);
 const char* tet_mesh_format_name(TetMeshFormat format);  // "mesh", "vtk", "vtu", "msh", "ovm", "unknown"
 TetMeshData read_tet_mesh(const std::string& path);
 // Same, also returning what the reader skipped or renumbered (notes.format is always set).
@@ -90,6 +102,8 @@ struct TetMeshWriteOptions {
   MshEncoding msh_encoding = MshEncoding::Ascii;
 };
 void write_tet_mesh(const std::string& path, const TetMeshData& mesh, const TetMeshWriteOptions& options);
+// Into a prepared output, by the extension of out.destination() (no commit).
+void write_tet_mesh(AtomicOutput& out, const TetMeshData& mesh, const TetMeshWriteOptions& options = {});
 
 // Boundary map `vid x y z` (0-based, any whitespace, blank lines ignored), kept in file order with
 // each entry's line in BoundaryMap::source_lines. Rejects duplicates (naming the later line),
@@ -98,6 +112,7 @@ BoundaryMap read_boundary_map(const std::string& path);
 enum class MapPrecision { Full /* shortest round-trip, exact */, Volmap6 /* %f: the dataset's 6 decimals */ };
 // Sorted by vid.
 void write_boundary_map(const std::string& path, const BoundaryMap& map, MapPrecision precision = MapPrecision::Full);
+void write_boundary_map(AtomicOutput& out, const BoundaryMap& map, MapPrecision precision = MapPrecision::Full);
 // Throws Error(BadInput) naming `map_path` and the offending entry's line unless the map's vids are
 // exactly the mesh's boundary vertices (boundary_vertex_ids): each once, no interior or
 // out-of-range ids; a missing boundary vertex is named (line 0).
@@ -107,6 +122,12 @@ void validate_boundary_map(const BoundaryMap& map, const TetMeshData& mesh, cons
 // and canonicalised (2/4 -> 1/2). Rejects den = 0, malformed tokens and a count != 3*expected_vertices.
 // Written as mpq_out_str does: `num/den`, or `num` when den = 1.
 std::vector<Rational> read_rationals(const std::string& path, std::size_t expected_vertices);
+
+// A whole text file, vetted like the readers above do (NUL bytes refused, streams capped at 1 GiB,
+// lines longer than `max_line_bytes` refused when it is nonzero, a UTF-8 byte-order mark dropped).
+// For text formats parsed elsewhere (custom domains, results logs).
+std::string read_text_file(const std::string& path, std::size_t max_line_bytes = 0);
 void write_rationals(const std::string& path, const std::vector<Rational>& xyz);
+void write_rationals(AtomicOutput& out, const std::vector<Rational>& xyz);
 
 }  // namespace volmap

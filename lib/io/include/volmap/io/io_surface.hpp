@@ -2,12 +2,15 @@
 // arrays. Vertex ids 0-based in file order; triangles keep the file's orientation. Polygons with
 // n > 3 corners are fan-triangulated from their first corner: (c0,c1,c2), (c0,c2,c3), ...
 // (deterministic). Coordinates are read in double precision (correctly rounded from the text).
-// Who parses what: OpenMesh 9's OFF/OBJ readers round coordinates to float even into a Vec3d mesh
-// (blobby.off 0.0958494 came back as 0.095849402248859406), and its PLY reader has no triangle
-// strips, so OFF, OBJ and PLY are parsed here (exact file vertex lists, non-manifold input kept as
-// is); STL (float by format; corners welded by exact coordinates) goes through OpenMesh with Vec3d
-// points, as does STL writing. The library prints nothing: OpenMesh's log streams are muted.
+// Every format is parsed here (OpenMesh 9's OFF/OBJ readers round coordinates to float even into a
+// Vec3d mesh, its PLY reader has no triangle strips and its STL reader merges NaN corners and
+// accepts a binary STL whose triangle count disagrees with its size): exact file vertex lists,
+// non-manifold input kept as is. STL (float by format): binary iff the size is 84 + 50 * count,
+// else ASCII (`solid`); corners welded by exact coordinates in order of first appearance; non-finite
+// corners refused. A leading UTF-8 byte-order mark is ignored in the text formats.
 #pragma once
+
+#include <volmap/io/atomic_file.hpp>
 
 #include <cstdint>
 #include <string>
@@ -23,10 +26,12 @@ struct SurfaceData {
 };
 
 // Throws Error(Io) when the file cannot be opened, Error(Unsupported) for an unknown extension,
-// Error(BadInput) when OpenMesh cannot parse it, it has no faces, or a coordinate is not finite.
+// Error(BadInput) when it cannot be parsed, it has no faces, or a coordinate is not finite.
 SurfaceData read_surface(const std::string& path);
 // Format by extension (.obj, .off, .stl (binary), .ply (binary)); atomic. Throws Error(BadInput) for
 // ids out of range or non-finite coordinates.
 void write_surface(const std::string& path, const SurfaceData& surface);
+// Same into a prepared output (format by out.destination()'s extension; no commit).
+void write_surface(AtomicOutput& out, const SurfaceData& surface);
 
 }  // namespace volmap
