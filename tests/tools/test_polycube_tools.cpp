@@ -130,3 +130,25 @@ TEST_CASE("volmap-dataset adds sphere and polycube maps to a group") {
             " --group G9 --domains polycube:L3,polycube:cross7")
             .code == 2);
 }
+
+TEST_CASE("volmap-polycube-cells: a generated L-shaped mesh gives its 12 cells, mapped by volmap-surface-map") {
+  const fs::path d = volmap_test::scratch_dir("polycube_cells");
+  // 4 x 4 x 1 unit cubes without the block x, y in [2, 4]: an L of 12 cells (star-shaped).
+  const auto mesh = volmap::generate_kuhn_grid(4, 4, 1, [](std::size_t i, std::size_t j, std::size_t) { return i < 2 || j < 2; });
+  const std::string mesh_path = (d / "L.mesh").string(), cells = (d / "L_cells.txt").string();
+  volmap::write_tet_mesh(mesh_path, mesh);
+  auto r = run(tool("volmap-polycube-cells") + " " + quote(mesh_path) + " " + quote(cells) + " --resolution 4 --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["cells"] == 12);
+  CHECK(j["ok"] == true);
+  // The cells file is a valid polycube domain for the surface mapper.
+  r = run(tool("volmap-surface-map") + " polycube --cells " + quote(cells) + " " + quote(mesh_path) + " " +
+          quote((d / "L_map.txt").string()) + " --refined " + quote((d / "L_in.mesh").string()) + " --json");
+  CHECK(r.code == 0);
+  // Bad resolution: exit 2, nothing written; the output may not be the input.
+  const std::string other = (d / "other.txt").string();
+  CHECK(run_stderr(tool("volmap-polycube-cells") + " " + quote(mesh_path) + " " + quote(other) + " --resolution 0").code == 2);
+  CHECK_FALSE(fs::exists(other));
+  CHECK(run_stderr(tool("volmap-polycube-cells") + " " + quote(mesh_path) + " " + quote(mesh_path)).code == 2);
+}
