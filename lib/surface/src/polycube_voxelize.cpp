@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <queue>
-#include <set>
 #include <tuple>
 
 namespace volmap {
