@@ -17,12 +17,14 @@
 // Decide when |det| > kSemiStatic·P. The SSE2 build expands along the z column, the AVX2 build along
 // a's row; both bounds hold, both return the exact sign, they may only differ in which rare inputs
 // they leave to the guarded layers.
-// Dispatch: on x86-64 glibc the public symbol is an ifunc resolved once at load time
-// (__builtin_cpu_supports("avx2")); elsewhere the baseline build is called directly.
+// Dispatch: through a function pointer that the first call sets to the AVX2 build when the CPU has it
+// (__builtin_cpu_supports("avx2")), else the SSE2/baseline build. (Not an ifunc: an ifunc resolver
+// runs before sanitizer runtimes are initialised and clang rejects C++ resolvers.)
 #include <volmap/predicates.hpp>
 
 #include "layers.hpp"
 
+#include <atomic>
 #include <cmath>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -134,19 +136,26 @@ bool cpu_has_avx2() { return false; }
 
 }  // namespace detail
 
-#if defined(__x86_64__) && defined(__GLIBC__)
-extern "C" {
-// ifunc resolver: runs once during relocation, before constructors (hence __builtin_cpu_init).
-static decltype(&detail::orient3d_sse2) volmap_resolve_orient3d() {
-  return detail::cpu_has_avx2() ? detail::orient3d_avx2 : detail::orient3d_sse2;
+namespace {
+
+using Orient3dImpl = int (*)(const double*, const double*, const double*, const double*);
+
+int orient3d_first_call(const double* a, const double* b, const double* c, const double* d);
+
+// Constant-initialised, so a call from any static initialiser sees a usable pointer; the first call
+// stores the build this CPU supports (every thread stores the same value).
+std::atomic<Orient3dImpl> g_orient3d{orient3d_first_call};
+
+int orient3d_first_call(const double* a, const double* b, const double* c, const double* d) {
+  const Orient3dImpl impl = detail::cpu_has_avx2() ? detail::orient3d_avx2 : detail::orient3d_sse2;
+  g_orient3d.store(impl, std::memory_order_relaxed);
+  return impl(a, b, c, d);
 }
-}
-int orient3d(const double* a, const double* b, const double* c, const double* d)
-    __attribute__((ifunc("volmap_resolve_orient3d")));
-#else
+
+}  // namespace
+
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  return detail::orient3d_sse2(a, b, c, d);
+  return g_orient3d.load(std::memory_order_relaxed)(a, b, c, d);
 }
-#endif
 
 }  // namespace volmap
