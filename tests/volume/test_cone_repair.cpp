@@ -294,6 +294,35 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
   }
 }
 
+TEST_CASE("cone repair: a region whose patch exceeds the tet budget absorbs boundary vertices until it fits") {
+  // A free vertex next to the bottom face pushed 1.5 spacings through it: the first ball with both
+  // kernels is thin (it hugs ∂M), so its patch adds tets. With a budget of 1 the repair must not give
+  // up on that region (the growth is deterministic: every retry finds the same one) but grow it by
+  // whole vertex stars, keeping both kernels, until the cones replace more tets than they add.
+  const int n = 4;
+  GridCase gc(n);
+  const int v = grid_id(n, 1, 2, 2);  // the first index runs along z
+  gc.target0[3 * v + 2] -= 1.5 / n;
+  REQUIRE(volmap::count_nonpositive(gc.target0, gc.m0.tets) > 0);
+  const auto unlimited = gc.repair();
+  REQUIRE(unlimited.failed_clusters == 0);
+  const long first_growth = long(gc.m.num_tets()) - long(gc.m0.num_tets());
+  CHECK(unlimited.absorbed_vertices == 0);  // no budget: the first region is patched as it is
+  CHECK(first_growth > 1);                  // the premise: that patch does not fit a budget of 1
+  volmap::ConeRepairOptions o;
+  o.max_added_tets = 1;
+  const auto r = gc.repair(o);
+  CHECK(r.failed_clusters == 0);
+  CHECK(r.patches >= 1);
+  CHECK(r.failures.budget == 0);
+  CHECK(r.absorbed_vertices >= 1);
+  CHECK(r.max_region > unlimited.max_region);
+  CHECK(long(gc.m.num_tets()) - long(gc.m0.num_tets()) <= 1);
+  check_refinement(gc.m0, gc.target0, gc.bnd0, gc.m, gc.target, gc.bnd);
+  MESSAGE("budget 1: region " << unlimited.max_region << " -> " << r.max_region << " tets, growth " << first_growth << " -> "
+                              << long(gc.m.num_tets()) - long(gc.m0.num_tets()) << ", " << r.absorbed_vertices << " vertices absorbed");
+}
+
 TEST_CASE("cone repair on a TetMesh: every property follows the patches, the boundary and locked targets stay bit-identical") {
   // Oracles: a tet property and the tet labels are both copied from the same parent, so after the
   // repair label == 1000 + tag on every live tet; the oriented boundary triangles (brute force over

@@ -4,7 +4,9 @@
 // Rules of the region growth (§7 "Growing R"): steepest ascent on the kernel-LP slack over the tets
 // behind the most violated ∂R faces, stopped after ConeRepairOptions::stall_growth_steps steps
 // without progress; then plain and 2-candidate growth; then aimed growth towards fixed target points
-// near the cluster's ∂M faces. Every exact sign is fp_.orient3d (one environment scope per call).
+// near the cluster's ∂M faces. A region whose patch would exceed max_added_tets absorbs free ∂R
+// vertices (whole stars) while it stays a ball with both kernels, until the patch fits (§7 "Fitting
+// the budget"). Every exact sign is fp_.orient3d (one environment scope per call).
 #include <volmap/volume/cone_repair.hpp>
 
 #include <volmap/core/error.hpp>
@@ -55,6 +57,9 @@ struct LocalTet {
   std::uint32_t parent;
   bool dead;
 };
+
+// What became of a patch: applied, over the growth budget, or refused by a check (counted).
+enum class PatchOutcome { applied, over_budget, refused };
 
 // Kernel-LP outcome for the current ∂R: double LP found / exactly verified, per space.
 struct Kernels {
@@ -626,6 +631,103 @@ class ConeRepairer {
     return grown;
   }
 
+  // ---- fitting the budget -------------------------------------------------------------------
+  // Net tet growth still allowed (max_added_tets minus the growth of the patches applied so far).
+  long long budget_left() const {
+    if (opt_.max_added_tets == 0) return std::numeric_limits<long long>::max();
+    return (long long)opt_.max_added_tets - net_added_;
+  }
+
+  // What R's interior means for its patch: a lower bound on the patch's net tet growth (the cones
+  // over ∂R, plus 3 per re-inserted interior vertex, the 1→4 split; one interior vertex may be the
+  // apex), and whether a locked vertex would be inside (no patch then).
+  struct RegionInterior {
+    long long growth_bound = 0;
+    bool locked_inside = false;
+  };
+  RegionInterior region_interior() {
+    RegionInterior r;
+    const std::vector<std::uint32_t> interior = region_interior_vertices();
+    for (std::uint32_t v : interior) r.locked_inside = r.locked_inside || locked_[VertexId(v)];
+    const long long reinserted = std::max(0LL, (long long)interior.size() - 1);
+    r.growth_bound = (long long)faces_.size() + 3 * reinserted - (long long)region_.size();
+    return r;
+  }
+
+  // ∂R (faces_) is a closed 2-manifold sphere (a pure check; grow_towards_ball repairs).
+  bool region_is_ball() const {
+    std::vector<std::uint32_t> bad_vertices, comp;
+    std::vector<std::array<std::uint32_t, 2>> bad_edges;
+    std::size_t ncomp = 0;
+    const long long chi = ball_check(bad_vertices, bad_edges, comp, ncomp);
+    return bad_vertices.empty() && bad_edges.empty() && ncomp == 1 && chi == 2;
+  }
+
+  // Strict kernel points of the current ∂R in both spaces: p and q stay when they still see every
+  // face exactly, otherwise the LPs decide; p and q are left as they were when a kernel is empty.
+  bool keep_kernel_points(double* p, double* q) {
+    std::vector<double> tri_t, tri_s;
+    face_triangles(tri_t, tri_s);
+    if (verified_inside(fp_, tri_t, q) && verified_inside(fp_, tri_s, p)) return true;
+    double p2[3], q2[3];
+    if (!kernel_points(tri_t, tri_s, p2, q2).ok_s) return false;
+    std::copy(p2, p2 + 3, p);
+    std::copy(q2, q2 + 3, q);
+    return true;
+  }
+
+  // The free (unlocked) vertices of ∂R, the ones on most ∂R faces first (then by id). Absorbing a
+  // vertex on m faces of ∂R whose outside star meets ∂R only along its link cycle replaces those m
+  // faces by the k outside link triangles while R gains k tets and one interior vertex: the bound
+  // changes by 3 − m.
+  std::vector<std::uint32_t> absorption_candidates() const {
+    std::vector<std::uint32_t> corners;
+    for (const auto& f : faces_)
+      for (std::uint32_t v : f.v)
+        if (!locked_[VertexId(v)]) corners.push_back(v);
+    std::sort(corners.begin(), corners.end());
+    std::vector<std::pair<long, std::uint32_t>> by_faces;  // (−faces, v)
+    for (std::size_t k = 0; k < corners.size();) {
+      std::size_t j = k;
+      while (j < corners.size() && corners[j] == corners[k]) ++j;
+      by_faces.push_back({-long(j - k), corners[k]});
+      k = j;
+    }
+    std::sort(by_faces.begin(), by_faces.end());
+    std::vector<std::uint32_t> out;
+    for (const auto& c : by_faces) out.push_back(c.second);
+    return out;
+  }
+
+  // Adds the whole star of one free ∂R vertex to R when R stays a ball within max_region_tets, with
+  // strict kernel points in both spaces (p, q updated) and no locked vertex inside, and the patch
+  // growth bound drops below `bound`. Each candidate tried costs one of `tries`; false (R as it was)
+  // when no candidate qualifies, the tries or the time are used up.
+  bool absorb_boundary_vertex(long long bound, double* p, double* q, int& tries) {
+    std::vector<std::uint32_t> st;
+    for (std::uint32_t v : absorption_candidates()) {
+      if (tries <= 0 || budget_.expired()) break;
+      --tries;
+      const std::size_t mark = region_.size();
+      star(v, st);
+      for (std::uint32_t t : st) add_to_region(t);
+      if (opt_.max_region_tets == 0 || region_.size() <= opt_.max_region_tets) {
+        region_boundary();
+        if (region_is_ball()) {
+          const RegionInterior inside = region_interior();
+          if (!inside.locked_inside && inside.growth_bound < bound && keep_kernel_points(p, q)) {
+            ++res_.absorbed_vertices;
+            return true;
+          }
+        }
+      }
+      for (std::size_t r = mark; r < region_.size(); ++r) in_region_[region_[r]] = 0;
+      region_.resize(mark);
+      region_boundary();
+    }
+    return false;
+  }
+
   // ---- the patch ----------------------------------------------------------------------------
   // Splits the local tets whose closure contains u's source position (1→4, 2→6 or edge n→2n) and
   // gives u a target position making every new tet exactly positive.
@@ -754,23 +856,24 @@ class ConeRepairer {
   }
 
   // Replaces R (region_, its ∂R in faces_) by the cone patch from a strict kernel point (source p,
-  // target q). Leaves everything as it was and returns false when the patch fails a check.
-  bool apply_patch(const double* p, const double* q) {
+  // target q). Leaves everything as it was when the patch fails a check (counted) or would exceed
+  // the budget (not counted: the caller may still absorb vertices, see repair_cluster).
+  PatchOutcome apply_patch(const double* p, const double* q) {
     const std::vector<std::uint32_t> interior = region_interior_vertices();
     for (std::uint32_t v : interior)
       if (locked_[VertexId(v)]) {  // cannot happen for a ball R
         ++res_.failures.not_ball;
-        return false;
+        return PatchOutcome::refused;
       }
     const std::uint32_t apex = existing_apex(interior);
     const std::uint32_t w = apex != kNone ? apex : kPendingApex;
     std::vector<double> saved_target;
     for (std::uint32_t v : interior)
       for (int d = 0; d < 3; ++d) saved_target.push_back(T(v)[d]);
-    auto restore = [&] {
+    auto restore = [&](PatchOutcome outcome) {
       for (std::size_t k = 0; k < interior.size(); ++k)
         for (int d = 0; d < 3; ++d) tx_[VertexId(interior[k])][d] = saved_target[3 * k + d];
-      return false;
+      return outcome;
     };
     for (int d = 0; d < 3; ++d) {
       pending_p_[d] = p[d];
@@ -779,12 +882,9 @@ class ConeRepairer {
     if (apex != kNone)
       for (int d = 0; d < 3; ++d) tx_[VertexId(w)][d] = q[d];
     std::vector<LocalTet> live;
-    if (!build_patch(w, interior, live)) return restore();
+    if (!build_patch(w, interior, live)) return restore(PatchOutcome::refused);
     const long long net = (long long)live.size() - (long long)region_.size();
-    if (opt_.max_added_tets > 0 && net_added_ + net > (long long)opt_.max_added_tets) {
-      ++res_.failures.budget;
-      return restore();
-    }
+    if (net > budget_left()) return restore(PatchOutcome::over_budget);
     std::vector<TetId> cavity;
     cavity.reserve(region_.size());
     for (std::uint32_t t : region_) cavity.push_back(TetId(t));
@@ -798,25 +898,40 @@ class ConeRepairer {
       made = mesh_.replace_cavity(cavity, fill, new_positions);
     } catch (const Error&) {
       ++res_.failures.face_mismatch;
-      return restore();
+      return restore(PatchOutcome::refused);
     }
     if (apex == kNone)
       for (int d = 0; d < 3; ++d) tx_[made.vertices[0]][d] = q[d];
     sync_slot_arrays();
     net_added_ += net;
-    return true;
+    return PatchOutcome::applied;
   }
 
+  // Grows R for the cluster, then applies its patch; while the patch would exceed the budget, R
+  // absorbs free ∂R vertices (a larger ball's cones replace more tets than they add).
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
     double p[3], q[3];
     const TimeBudget growth_clock;
     const bool grown = grow_with_strategies(cluster, p, q);
     res_.seconds_growth += growth_clock.elapsed();
     if (!grown) return false;
-    const TimeBudget patch_clock;
-    const bool applied = apply_patch(p, q);
-    res_.seconds_patch += patch_clock.elapsed();
-    return applied;
+    int tries = opt_.max_growth_steps;
+    for (;;) {
+      const RegionInterior inside = region_interior();
+      if (inside.growth_bound <= budget_left()) {
+        const TimeBudget patch_clock;
+        const PatchOutcome outcome = apply_patch(p, q);
+        res_.seconds_patch += patch_clock.elapsed();
+        if (outcome != PatchOutcome::over_budget) return outcome == PatchOutcome::applied;
+      }
+      const TimeBudget absorb_clock;
+      const bool absorbed = absorb_boundary_vertex(inside.growth_bound, p, q, tries);
+      res_.seconds_growth += absorb_clock.elapsed();
+      if (!absorbed) {
+        ++res_.failures.budget;
+        return false;
+      }
+    }
   }
 };
 

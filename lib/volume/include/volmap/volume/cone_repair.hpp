@@ -23,9 +23,11 @@
 namespace volmap {
 
 struct ConeRepairOptions {
-  std::size_t max_added_tets = 0;     // 0 = unlimited; net tet growth budget over all patches
+  // Net tet growth budget over all patches (0 = unlimited). A region whose patch would exceed it
+  // absorbs free ∂R vertices, keeping both kernels, until the patch fits (docs/mapping.md §7).
+  std::size_t max_added_tets = 0;
   std::size_t max_region_tets = 4000; // give up on a cluster when R grows beyond this
-  int max_growth_steps = 400;         // per cluster
+  int max_growth_steps = 400;         // per cluster (and as many vertex absorptions tried to fit the budget)
   // Growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only.
   // After a failure, plain growth and a 2-candidate lookahead are tried too.
   int growth_lookahead = 4;
@@ -58,18 +60,20 @@ struct ConeRepairResult {
     std::size_t reinsertion = 0;        // an interior vertex of R could not be re-inserted
     std::size_t not_positive = 0;       // a new tet not exactly positive in both spaces
     std::size_t face_mismatch = 0;      // new tets do not close onto ∂R (replace_cavity refused them)
-    std::size_t budget = 0;             // max_added_tets would be exceeded
+    std::size_t budget = 0;             // max_added_tets would be exceeded, also after absorbing ∂R vertices
     std::size_t time_limit = 0;         // time_limit_seconds reached during growth
   } failures;
   std::size_t attempts = 0, growth_steps = 0, lp_solves = 0;  // work counters
+  std::size_t absorbed_vertices = 0;  // ∂R vertices absorbed to fit patches into max_added_tets
   double seconds_growth = 0, seconds_patch = 0, seconds_setup = 0;
 };
 
 // Repairs the clusters of non-positive target tets in place: the mesh is refined, new vertices get
 // their target here and the locked property's default (0). A cluster whose region cannot be made a
 // ball with strict kernels in both spaces within the limits, or whose patch would exceed
-// max_added_tets, is left exactly as it was (counted in failed_clusters). Properties attached to
-// the mesh follow every patch (new tets take the values of the region tet they were cut from).
+// max_added_tets however many free ∂R vertices R absorbs, is left exactly as it was (counted in
+// failed_clusters). Properties attached to the mesh follow every patch (new tets take the values of
+// the region tet they were cut from).
 ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
                              const ConeRepairOptions& options = {});
 
