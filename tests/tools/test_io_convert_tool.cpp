@@ -76,6 +76,11 @@ TEST_CASE("volmap-convert: conversions keep order, exit codes, --json, no partia
   CHECK_FALSE(fs::exists(d / "z.vtk"));
   CHECK(read_text(d / "stderr.txt").find("broken.mesh:4") != std::string::npos);
   CHECK(run(quoted(tool) + " " + quoted(d) + " " + quoted(d / "w.vtk")) == 2);
+  // A usage error stops parsing before --json is stored: the one object is still printed.
+  CHECK(run(quoted(tool) + " " + quoted(bone) + " " + quoted(d / "v.vtk") + " --json --no-such-option", &out) == 2);
+  CHECK(nlohmann::json::parse(out)["exit_code"] == 2);
+  CHECK(run(quoted(tool) + " " + quoted(bone) + " --json", &out) == 2);
+  CHECK(nlohmann::json::parse(out)["ok"] == false);
   CHECK(run(quoted(tool) + " --help") == 0);
 }
 

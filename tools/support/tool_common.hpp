@@ -146,12 +146,15 @@ inline int run_tool(CLI::App& app, int argc, char** argv, const std::function<in
                     const bool* json_mode = nullptr) {
   volmap::install_temp_cleanup_on_signals();
   const std::string name = app.get_name();
+  // A usage error stops parsing before --json is stored: the flag is then read from argv itself.
+  bool json_in_argv = false;
+  for (int i = 1; i < argc; ++i) json_in_argv = json_in_argv || std::string(argv[i]) == "--json";
   auto fail = [&](int code, const std::string& reason) {
     std::string line = reason;
     for (char& c : line)
       if (c == '\n' || c == '\r') c = ' ';
     std::cerr << name << ": " << line << "\n";
-    if (json_mode && *json_mode) {
+    if (json_mode && (*json_mode || json_in_argv)) {
       nlohmann::json j{{"ok", false}, {"exit_code", code}, {"error", line}};
       std::cout << j.dump() << "\n";
     }

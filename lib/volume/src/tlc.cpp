@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -37,18 +38,18 @@ struct TlcProblem {
 
   explicit TlcProblem(const std::vector<std::uint32_t>& t) : tets(t) {}
 
-  // Lifted content minus signed content (a constant shift for a fixed boundary); sets *all_positive
-  // when every double edge determinant is negative (VOLMAP-positive).
-  double evaluate(const double* vars, double* grad, bool* all_positive) {
+  // Lifted content minus signed content (a constant shift for a fixed boundary); returns in *bad the
+  // number of tets whose double edge determinant is not negative (not VOLMAP-positive).
+  double evaluate(const double* vars, double* grad, std::size_t* bad) {
     layout.load(vars, x.data());
-    bool positive = true;
+    std::atomic<std::size_t> nonpositive{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
       double T[9], dT[9];
-      bool local_pos = true;
+      std::size_t local_bad = 0;
       for (std::size_t t = r.begin(); t < r.end(); ++t) {
         edge_matrix(x.data(), &tets[4 * t], T);
         const double d = det3(T);
-        if (!(d < 0)) local_pos = false;
+        if (!(d < 0)) ++local_bad;
         tet_energy[t] = tlc_lifted_content(T, &rest_gram[9 * t], dT) + d / 6.0;
         // + ∂(det T/6)/∂T via the cofactors of T.
         dT[0] += (T[4] * T[8] - T[5] * T[7]) / 6.0;
@@ -62,12 +63,12 @@ struct TlcProblem {
         dT[8] += (T[0] * T[4] - T[1] * T[3]) / 6.0;
         untangle::edge_gradient_to_vertices(dT, &tet_grad[12 * t]);
       }
-      if (!local_pos) positive = false;  // benign race: only ever set to false
+      if (local_bad > 0) nonpositive.fetch_add(local_bad, std::memory_order_relaxed);
     });
     double e = 0;
     for (std::size_t t = 0; t < nt; ++t) e += tet_energy[t];
     if (grad) layout.gather(tet_grad.data(), grad);
-    *all_positive = positive;
+    *bad = nonpositive.load(std::memory_order_relaxed);
     return e;
   }
 };
@@ -155,7 +156,13 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   p.tet_grad.resize(12 * p.nt);
   p.tet_energy.resize(p.nt);
   std::vector<double> candidate = target_xyz;
-  obj.evaluate = [&](const double* vars, double* grad, bool* all_positive) { return p.evaluate(vars, grad, all_positive); };
+  obj.evaluate = [&](const double* vars, double* grad, bool* all_positive) {
+    const double e = p.evaluate(vars, grad, &obj.double_nonpositive);
+    *all_positive = obj.double_nonpositive == 0;
+    return e;
+  };
+  obj.stall_evaluations = options.stall_evaluations;
+  obj.stall_max_bad = options.stall_max_bad;
   obj.layout = &p.layout;
   obj.frame = &p.frame;
   obj.tets = &tets;
@@ -179,6 +186,9 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   } catch (const untangle::TimeStop&) {
     vars = obj.last_x;
     result.timed_out = true;
+  } catch (const untangle::StallStop&) {
+    vars = obj.last_x;
+    result.stalled = true;
   }
   p.frame.write_back(p.layout, vars.data(), target_xyz);
   return finish();

@@ -107,6 +107,16 @@ bool GuardedObjective::exactly_certified(const double* vars) {
   return count_nonpositive(*candidate, *tets) == 0;
 }
 
+bool GuardedObjective::stalled(const Eigen::VectorXd& x) {
+  if (stall_evaluations <= 0) return false;
+  if (double_nonpositive < fewest_nonpositive) {
+    fewest_nonpositive = double_nonpositive;
+    fewest_at = evaluations;
+    fewest_x = x;
+  }
+  return fewest_nonpositive <= stall_max_bad && evaluations - fewest_at >= stall_evaluations;
+}
+
 double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
   ++evaluations;
   if (past_deadline()) {
@@ -125,6 +135,10 @@ double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g
       throw CertifiedStop{};
     }
     next_exact_check = evaluations + check_period;
+  }
+  if (stalled(x)) {
+    last_x = fewest_x;
+    throw StallStop{};
   }
   return e;
 }

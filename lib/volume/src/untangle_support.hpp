@@ -82,11 +82,15 @@ struct BoxFrame {
 
 struct CertifiedStop {};
 struct TimeStop {};
+struct StallStop {};
 
 // LBFGSpp objective around an energy: checks the deadline (throws TimeStop), optionally acts as a
 // barrier (+∞ when a double determinant is not positive) and, when every double determinant is
 // positive, runs the exact check on the unscaled candidate every `check_period` evaluations and
-// throws CertifiedStop when it passes. `last_x` holds the point at which a stop was thrown.
+// throws CertifiedStop when it passes. With stall_evaluations > 0 it throws StallStop once the
+// double count of non-positive tets (reported by the energy in `double_nonpositive`) has stayed
+// at most stall_max_bad without a new minimum for stall_evaluations evaluations.
+// `last_x` holds the point at which a stop was thrown (for a stall: the point of the minimum).
 struct GuardedObjective {
   // E(vars); writes the gradient when grad != nullptr and sets *all_positive (double test).
   std::function<double(const double* vars, double* grad, bool* all_positive)> evaluate;
@@ -100,9 +104,17 @@ struct GuardedObjective {
   long evaluations = 0;
   long next_exact_check = 0;
   int check_period = 10;
+  long stall_evaluations = 0;           // 0: never stop on a stall
+  std::size_t stall_max_bad = 0;
+  std::size_t double_nonpositive = 0;   // set by `evaluate` when stall_evaluations > 0
+  std::size_t fewest_nonpositive = std::size_t(-1);
+  long fewest_at = 0;                   // evaluation that reached fewest_nonpositive
+  Eigen::VectorXd fewest_x;             // its point: where a StallStop leaves the run
   Eigen::VectorXd last_x;
 
   bool past_deadline() const { return budget.expired(); }
+  // Records the count of this evaluation at x; true when the run has stalled (see above).
+  bool stalled(const Eigen::VectorXd& x);
   // Writes vars into the candidate and returns true when its exact count is 0.
   bool exactly_certified(const double* vars);
   double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad);
@@ -114,7 +126,7 @@ LBFGSpp::LBFGSParam<double> lbfgs_param(int max_iterations, double gtol, double 
 
 // Runs one LBFGSpp minimisation from x; returns the iterations done, or -1 when the line search gave
 // up (LBFGSpp throws std::runtime_error / std::logic_error): x is then the solver's last iterate.
-// CertifiedStop and TimeStop propagate.
+// CertifiedStop, TimeStop and StallStop propagate.
 template <class Solver>
 long run_lbfgs(Solver& solver, GuardedObjective& objective, Eigen::VectorXd& x) {
   double fx = 0;
@@ -123,6 +135,8 @@ long run_lbfgs(Solver& solver, GuardedObjective& objective, Eigen::VectorXd& x) 
   } catch (const CertifiedStop&) {
     throw;
   } catch (const TimeStop&) {
+    throw;
+  } catch (const StallStop&) {
     throw;
   } catch (const std::exception&) {
     return -1;

@@ -152,6 +152,7 @@ class VolumeMapper {
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, then link-kernel relocation.
   void small_lift_tlc(const std::string& name, double share) {
     TlcOptions to;
+    hand_over_stalls(to);
     to.alpha_ratio = 1e-8;
     to.time_limit_seconds = budget_->option_seconds(share);
     judged_stage(name, [&] { run_tlc(state_, to); });
@@ -188,8 +189,16 @@ class VolumeMapper {
   // ---- the phases -----------------------------------------------------------------------------
   // §6 TLC (the whole method with MapMethod::Tlc), then in the cascade the link kernel, a
   // small-lift TLC round and local FFM, each followed by an early B1 attempt.
+  // A TLC stage hands the last few non-positive tets over to B1 when B1 may run (see the options).
+  void hand_over_stalls(TlcOptions& to) const {
+    if (!b1_rounds_) return;
+    to.stall_evaluations = options_.tlc_stall_evaluations;
+    to.stall_max_bad = options_.early_repair_max_bad;
+  }
+
   void untangle_from_tlc() {
     TlcOptions to;
+    hand_over_stalls(to);
     to.time_limit_seconds = budget_->option_seconds(cascade() ? options_.tlc_time_share : 1.0);
     judged_stage("tlc", [&] { run_tlc(state_, to); });
     link_kernel();

@@ -20,6 +20,11 @@ struct TlcOptions {
   int max_evaluations = 10000;
   double ftol = 1e-8;           // relative energy decrease test
   double time_limit_seconds = 0;
+  // Hand-over: stop when the double count of non-positive tets is at most stall_max_bad and has not
+  // reached a new minimum for stall_evaluations energy evaluations (0 = run to convergence); the map
+  // is left at the point of that minimum. For a caller with a cheaper repair of a few tets.
+  long stall_evaluations = 0;
+  std::size_t stall_max_bad = 0;
 };
 
 struct TlcResult {
@@ -28,6 +33,7 @@ struct TlcResult {
   long evaluations = 0;
   double seconds = 0;
   bool timed_out = false;
+  bool stalled = false;
 };
 
 TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,

@@ -54,6 +54,10 @@ struct VolumeMapOptions {
   // tets, B1 cone repair is tried at once (a failed attempt changes nothing), and the global FFM
   // stages are skipped.
   std::size_t early_repair_max_bad = 200;
+  // With refinement allowed: a TLC stage hands over to that repair once its double count of
+  // non-positive tets is at most early_repair_max_bad and has not reached a new minimum for this
+  // many energy evaluations (0 = TLC runs to convergence or its time share).
+  long tlc_stall_evaluations = 150;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
