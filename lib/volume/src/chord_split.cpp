@@ -2,6 +2,7 @@
 #include <volmap/volume/chord_split.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/volume/chord_flip.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
@@ -73,7 +74,63 @@ bool split(TetMesh& mesh, const std::uint32_t* verts, int n) {
   return true;
 }
 
+bool edge_exists(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
+  return mesh.find_edge(VertexId(e[0]), VertexId(e[1]), nullptr, nullptr).is_valid();
+}
+
+std::size_t edge_degree(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
+  int a = -1, b = -1;
+  const TetId t = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
+  return t.is_valid() ? mesh.edge_degree(t, a, b) : 0;
+}
+
 }  // namespace
+
+ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                                        const std::vector<std::array<std::uint32_t, 3>>& faces) {
+  ChordSplitResult r;
+  r.tets_before = mesh.num_tets();
+  const std::size_t nv0 = mesh.num_vertices();
+  // Edges: removals by increasing degree, repeated while they make progress.
+  std::vector<std::pair<std::size_t, std::array<std::uint32_t, 2>>> by_degree;
+  for (const auto& e : edges) by_degree.push_back({edge_degree(mesh, e), e});
+  std::stable_sort(by_degree.begin(), by_degree.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::array<std::uint32_t, 2>> pending;
+  for (const auto& de : by_degree) pending.push_back(de.second);
+  for (bool progress = true; progress;) {
+    progress = false;
+    std::vector<std::array<std::uint32_t, 2>> left;
+    for (const auto& e : pending) {
+      if (!edge_exists(mesh, e)) continue;
+      if (remove_chord_edge(mesh, rules, e[0], e[1])) {
+        ++r.edges_removed;
+        progress = true;
+      } else {
+        left.push_back(e);
+      }
+    }
+    pending.swap(left);
+  }
+  // What is left: a removal if a split nearby made one admissible, else a split.
+  for (const auto& e : pending) {
+    if (!edge_exists(mesh, e)) continue;
+    if (remove_chord_edge(mesh, rules, e[0], e[1]))
+      ++r.edges_removed;
+    else if (split(mesh, e.data(), 2))
+      ++r.edges_split;
+  }
+  // Faces that still exist: a 2-3 flip, else a split.
+  for (const auto& f : faces) {
+    if (tets_with(mesh, f.data(), 3).size() != 2) continue;
+    if (flip_chord_face(mesh, rules, f))
+      ++r.faces_flipped;
+    else if (split(mesh, f.data(), 3))
+      ++r.faces_split;
+  }
+  r.tets_after = mesh.num_tets();
+  r.vertices_added = mesh.num_vertices() - nv0;
+  return r;
+}
 
 ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& edges,
                               const std::vector<std::array<std::uint32_t, 3>>& faces) {
