@@ -63,6 +63,13 @@ double tet_shape(const TetMesh& mesh, const std::array<std::uint32_t, 4>& v) {
                mesh.vertex_position(VertexId(v[3])));
 }
 
+std::array<std::uint32_t, 4> ids(const std::array<VertexId, 4>& v) { return {v[0].idx(), v[1].idx(), v[2].idx(), v[3].idx()}; }
+
+// A flip may not make the worst tet much worse than the worst tet it replaces: near-flat new tets
+// would stop later splits from finding an exactly positive point and hurt the untanglers.
+constexpr double kShapeRatio = 0.1;
+double shape_floor(double worst_replaced) { return kShapeRatio * worst_replaced; }
+
 // Best triangulation of an edge's ring by dynamic programming over sub-polygons i..j: score[i][j] is
 // the best worst-tet shape of an admissible triangulation of i..j (kInvalid when none); the diagonal
 // (i, j) itself must be admissible unless it is a side of the polygon.
@@ -74,7 +81,11 @@ class RingTriangulator {
     n_ = int(r_.size());
     score_.assign(std::size_t(n_ * n_), kInvalid);
     split_.assign(std::size_t(n_ * n_), -1);
+    neighbours_.resize(std::size_t(n_));
     read_side_neighbours(t, a, b);
+    double ring_worst = std::numeric_limits<double>::infinity();
+    mesh.edge_star(t, a, b, [&](TetId s) { ring_worst = std::min(ring_worst, tet_shape(mesh, ids(mesh.tet_vertices(s)))); });
+    floor_ = shape_floor(ring_worst);
   }
 
   // The triangles of the best admissible triangulation, or empty when there is none.
@@ -97,7 +108,7 @@ class RingTriangulator {
       return;
     }
     const bool side = i == 0 && j == n_ - 1;
-    if (!side && !admissible_diagonal(r_[i], r_[j])) return;
+    if (!side && !admissible_diagonal(i, j)) return;
     for (int k = i + 1; k < j; ++k) {
       const double s = std::min({score(i, k), score(k, j), triangle(i, k, j)});
       if (s > score(i, j)) {
@@ -107,10 +118,24 @@ class RingTriangulator {
     }
   }
 
-  // The new edge (x, y) and the faces (va, x, y), (vb, x, y): not existing yet, not blocking.
-  bool admissible_diagonal(std::uint32_t x, std::uint32_t y) const {
-    if (mesh_.find_edge(VertexId(x), VertexId(y), nullptr, nullptr).is_valid()) return false;
-    return !rules_.edge_blocks(x, y) && !rules_.face_image_blocks(va_, x, y) && !rules_.face_image_blocks(vb_, x, y);
+  // The new edge (ring[i], ring[j]) and the faces with va and vb: not blocking, not an edge yet.
+  bool admissible_diagonal(int i, int j) {
+    const std::uint32_t x = r_[i], y = r_[j];
+    if (rules_.edge_blocks(x, y) || rules_.face_image_blocks(va_, x, y) || rules_.face_image_blocks(vb_, x, y)) return false;
+    const std::vector<std::uint32_t>& nx = neighbours(i);
+    return !std::binary_search(nx.begin(), nx.end(), y);
+  }
+
+  // The vertices sharing a tet with ring[i], sorted (one star walk per ring vertex, on demand).
+  const std::vector<std::uint32_t>& neighbours(int i) {
+    std::vector<std::uint32_t>& out = neighbours_[std::size_t(i)];
+    if (!out.empty()) return out;
+    mesh_.vertex_star(VertexId(r_[i]), star_);
+    for (TetId s : star_)
+      for (VertexId v : mesh_.tet_vertices(s)) out.push_back(v.idx());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
   }
 
   // For each side (ring[i], ring[i+1]): is the tet across its face with va (with vb) a fixed
@@ -142,7 +167,8 @@ class RingTriangulator {
     const std::array<std::uint32_t, 4> lower = {r_[i], r_[k], r_[j], va_}, upper = {r_[j], r_[k], r_[i], vb_};
     if (!admissible_tet(mesh_, rules_, fp_, lower) || !admissible_tet(mesh_, rules_, fp_, upper)) return kInvalid;
     if (glued_to_bad(lower, i, k, j, bad_a_) || glued_to_bad(upper, i, k, j, bad_b_)) return kInvalid;
-    return std::min(tet_shape(mesh_, lower), tet_shape(mesh_, upper));
+    const double worst = std::min(tet_shape(mesh_, lower), tet_shape(mesh_, upper));
+    return worst >= floor_ ? worst : kInvalid;
   }
 
   void collect(int i, int j, std::vector<std::array<int, 3>>& out) const {
@@ -162,6 +188,9 @@ class RingTriangulator {
   std::vector<double> score_;
   std::vector<int> split_;
   std::vector<std::uint8_t> bad_a_, bad_b_;
+  double floor_ = 0;
+  std::vector<std::vector<std::uint32_t>> neighbours_;
+  std::vector<TetId> star_;
 };
 
 }  // namespace
@@ -200,10 +229,13 @@ bool flip_chord_face(TetMesh& mesh, const ChordRules& rules, const std::array<st
   // child j takes over the faces opposite v_j of both old tets.
   const auto tv = mesh.tet_vertices(on_face);
   const TetId other = mesh.half_face_opposite(h).tet();
+  const auto ov = mesh.tet_vertices(other);
+  const double floor = shape_floor(std::min(tet_shape(mesh, ids(tv)), tet_shape(mesh, ids(ov))));
   for (int j = 0; j < 4; ++j) {
     if (j == apex) continue;
-    std::array<std::uint32_t, 4> v = {tv[0].idx(), tv[1].idx(), tv[2].idx(), tv[3].idx()};
+    std::array<std::uint32_t, 4> v = ids(tv);
     v[j] = e;
+    if (tet_shape(mesh, v) < floor) return false;
     if (!all_locked(rules, v)) continue;
     if (rules.fixed_tet_nonpositive(v) || glued_to_lasting_bad(mesh, rules, HalfFaceId(on_face, j)) ||
         glued_to_lasting_bad(mesh, rules, HalfFaceId(other, mesh.tet_local_index(other, tv[j]))))

@@ -74,15 +74,61 @@ bool split(TetMesh& mesh, const std::uint32_t* verts, int n) {
   return true;
 }
 
-bool edge_exists(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
-  return mesh.find_edge(VertexId(e[0]), VertexId(e[1]), nullptr, nullptr).is_valid();
-}
-
 std::size_t edge_degree(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
   int a = -1, b = -1;
   const TetId t = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
   return t.is_valid() ? mesh.edge_degree(t, a, b) : 0;
 }
+
+// When was each vertex last in an edited region (a counter, not time)? Whether a chord fix is
+// admissible depends only on the tets around the chord, the edges between the vertices of those
+// tets and the tets across their faces, so a fix that failed cannot succeed before an edit touches
+// one of those vertices: the chord's own vertices or its ring (its apexes for a face).
+class EditStamps {
+ public:
+  std::uint64_t now() const { return tick_; }
+  // The edge's vertices and its ring; empty when the edge is gone. `hint`: a tet that held the edge
+  // (updated; slots are reused, so it is checked), which spares a walk around a high-degree vertex.
+  std::vector<std::uint32_t> neighbourhood(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e, TetId& hint) const {
+    std::vector<std::uint32_t> out;
+    int a = -1, b = -1;
+    if (hint.is_valid() && hint.idx() < mesh.num_tet_slots() && mesh.tet_is_live(hint)) {
+      a = mesh.tet_local_index(hint, VertexId(e[0]));
+      b = mesh.tet_local_index(hint, VertexId(e[1]));
+    }
+    if (a < 0 || b < 0) hint = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
+    if (!hint.is_valid()) return out;
+    mesh.edge_star(hint, a, b, [&](TetId t) {
+      for (VertexId v : mesh.tet_vertices(t)) out.push_back(v.idx());
+    });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  bool touched_since(const std::vector<std::uint32_t>& vertices, std::uint64_t tick) const {
+    for (std::uint32_t v : vertices)
+      if (v < stamp_.size() && stamp_[v] > tick) return true;
+    return false;
+  }
+  void edited(const std::vector<std::uint32_t>& vertices, const TetMesh& mesh) {
+    ++tick_;
+    stamp_.resize(mesh.num_vertex_slots(), 0);
+    for (std::uint32_t v : vertices) stamp_[v] = tick_;
+  }
+
+ private:
+  std::uint64_t tick_ = 1;
+  std::vector<std::uint64_t> stamp_;
+};
+
+// One blocking chord edge waiting for a fix, when a removal last failed on it (0: never tried) and
+// a tet that held it.
+struct PendingEdge {
+  std::array<std::uint32_t, 2> v;
+  std::uint64_t failed_at;
+  TetId hint;
+  std::vector<std::uint32_t> around;  // its neighbourhood when the removal failed
+};
 
 }  // namespace
 
@@ -91,33 +137,56 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
   ChordSplitResult r;
   r.tets_before = mesh.num_tets();
   const std::size_t nv0 = mesh.num_vertices();
-  // Edges: removals by increasing degree, repeated while they make progress.
+  EditStamps stamps;
+  // Edges: removals by increasing degree, repeated while they make progress; a removal that failed
+  // is tried again only after an edit touched the edge's neighbourhood.
   std::vector<std::pair<std::size_t, std::array<std::uint32_t, 2>>> by_degree;
   for (const auto& e : edges) by_degree.push_back({edge_degree(mesh, e), e});
   std::stable_sort(by_degree.begin(), by_degree.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<std::array<std::uint32_t, 2>> pending;
-  for (const auto& de : by_degree) pending.push_back(de.second);
+  std::vector<PendingEdge> pending;
+  for (const auto& de : by_degree) pending.push_back({de.second, 0, TetId::kInvalid, {}});
+  // A removal of e unless it failed before and nothing around it changed since (the neighbourhood
+  // stored at the failure holds e's vertices, so any change of e's star is seen). Sets `gone` when
+  // e no longer exists.
+  auto try_removal = [&](PendingEdge& e, bool& gone) {
+    gone = false;
+    if (e.failed_at != 0 && !stamps.touched_since(e.around, e.failed_at)) return false;
+    std::vector<std::uint32_t> around = stamps.neighbourhood(mesh, e.v, e.hint);
+    if (around.empty()) {
+      gone = true;
+      return false;
+    }
+    if (remove_chord_edge(mesh, rules, e.v[0], e.v[1])) {
+      stamps.edited(around, mesh);
+      ++r.edges_removed;
+      return true;
+    }
+    e.failed_at = stamps.now();
+    e.around = std::move(around);
+    return false;
+  };
   for (bool progress = true; progress;) {
     progress = false;
-    std::vector<std::array<std::uint32_t, 2>> left;
-    for (const auto& e : pending) {
-      if (!edge_exists(mesh, e)) continue;
-      if (remove_chord_edge(mesh, rules, e[0], e[1])) {
-        ++r.edges_removed;
+    std::vector<PendingEdge> left;
+    for (PendingEdge& e : pending) {
+      bool gone = false;
+      if (try_removal(e, gone))
         progress = true;
-      } else {
-        left.push_back(e);
-      }
+      else if (!gone)
+        left.push_back(std::move(e));
     }
     pending.swap(left);
   }
   // What is left: a removal if a split nearby made one admissible, else a split.
-  for (const auto& e : pending) {
-    if (!edge_exists(mesh, e)) continue;
-    if (remove_chord_edge(mesh, rules, e[0], e[1]))
-      ++r.edges_removed;
-    else if (split(mesh, e.data(), 2))
+  for (PendingEdge& e : pending) {
+    bool gone = false;
+    if (try_removal(e, gone)) continue;
+    if (gone) continue;
+    const std::vector<std::uint32_t> around = stamps.neighbourhood(mesh, e.v, e.hint);
+    if (!around.empty() && split(mesh, e.v.data(), 2)) {
+      stamps.edited(around, mesh);
       ++r.edges_split;
+    }
   }
   // Faces that still exist: a 2-3 flip, else a split.
   for (const auto& f : faces) {
