@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/boundary_faces.hpp>
+#include <volmap/volume/chord_cone.hpp>
 #include <volmap/volume/chord_split.hpp>
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/map_stages.hpp>
@@ -166,4 +167,39 @@ TEST_CASE("B0: a bipyramid whose middle face lies in a facet — one 2-3 flip in
   CHECK(r.certified);
   CHECK(r.source.num_tets() == 3);
   CHECK(r.source.num_vertices() == 5);
+}
+
+TEST_CASE("B0 vertex cone: the star of a boundary vertex becomes the cone from one interior vertex, +1 tet per face of ∂M at it") {
+  const volmap::TetMeshData grid = map_test::kuhn_grid(3);
+  const auto bnd = map_test::grid_boundary_flags(3);
+  int coned = 0;
+  for (std::uint32_t v = 0; v < grid.num_vertices(); ++v) {
+    if (!bnd[v]) continue;
+    volmap::TetMesh m(grid);
+    const auto boundary = oriented_boundary(m);
+    std::vector<volmap::TetId> star;
+    m.vertex_star(volmap::VertexId(v), star);
+    const std::size_t s = volmap::boundary_faces_at(m, v);
+    // Brute force: the faces of ∂M (tets' boundary half-faces) through v.
+    std::size_t brute = 0;
+    for (volmap::HalfFaceId h : m.boundary_half_faces())
+      for (volmap::VertexId x : m.half_face_vertices(h)) brute += x.idx() == v;
+    CHECK(s == brute);
+    if (!volmap::cone_vertex_star(m, v)) continue;  // no verified strict kernel point: left alone
+    ++coned;
+    const volmap::InvariantReport inv = m.check_invariants(true);
+    INFO(inv.problem);
+    CHECK(inv.ok);
+    CHECK(m.num_tets() == grid.num_tets() + s);
+    CHECK(m.num_vertices() == grid.num_vertices() + 1);
+    CHECK(oriented_boundary(m) == boundary);
+    const volmap::VertexId w(std::uint32_t(grid.num_vertices()));
+    CHECK(!m.vertex_is_boundary(w));
+    // Every edge left at v is an edge of ∂M (or the one to w): no interior edge of v's old star.
+    m.vertex_star(volmap::VertexId(v), star);
+    CHECK(star.size() == s);
+    for (volmap::TetId t : star) CHECK(m.tet_local_index(t, w) >= 0);
+  }
+  MESSAGE("coned " << coned << " boundary vertices of the 3x3x3 Kuhn cube");
+  CHECK(coned > 0);
 }

@@ -2,10 +2,13 @@
 #include <volmap/volume/chord_split.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/volume/chord_cone.hpp>
 #include <volmap/volume/chord_flip.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
+#include <functional>
+#include <map>
 
 namespace volmap {
 
@@ -130,6 +133,43 @@ struct PendingEdge {
   std::vector<std::uint32_t> around;  // its neighbourhood when the removal failed
 };
 
+// The tets around the pending edge e (0 when it is gone).
+std::size_t pending_degree(const TetMesh& mesh, const EditStamps& stamps, PendingEdge& e) {
+  return stamps.neighbourhood(mesh, e.v, e.hint).empty() ? 0 : mesh.edge_degree(e.hint, mesh.tet_local_index(e.hint, VertexId(e.v[0])),
+                                                                                   mesh.tet_local_index(e.hint, VertexId(e.v[1])));
+}
+
+// Vertex cones (chord_cone.hpp) where they are cheaper than the splits the pending chords at a
+// vertex would cost: the cone at v adds one tet per face of ∂M at v and takes every chord at v with
+// it. `simplices` are the pending chords' vertices, split_cost(k) what fixing chord k by a split
+// would add now (0 when it is gone). Vertices by decreasing saving, each recomputed before its cone.
+void cone_where_cheaper(TetMesh& mesh, const std::vector<std::vector<std::uint32_t>>& simplices,
+                        const std::function<long long(std::size_t)>& split_cost, EditStamps& stamps, ChordSplitResult& r) {
+  std::map<std::uint32_t, std::vector<std::size_t>> at;  // vertex -> pending chords
+  for (std::size_t k = 0; k < simplices.size(); ++k)
+    for (std::uint32_t v : simplices[k]) at[v].push_back(k);
+  auto saving = [&](std::uint32_t v) {
+    long long cost = 0;
+    for (std::size_t k : at[v]) cost += split_cost(k);
+    return cost - (long long)boundary_faces_at(mesh, v);
+  };
+  std::vector<std::pair<long long, std::uint32_t>> order;
+  for (const auto& entry : at) order.push_back({saving(entry.first), entry.first});
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
+  std::vector<TetId> star;
+  for (const auto& [first_saving, v] : order) {
+    if (first_saving <= 0) break;
+    if (saving(v) <= 0) continue;
+    mesh.vertex_star(VertexId(v), star);
+    std::vector<std::uint32_t> around;
+    for (TetId t : star)
+      for (VertexId x : mesh.tet_vertices(t)) around.push_back(x.idx());
+    if (!cone_vertex_star(mesh, v)) continue;
+    stamps.edited(around, mesh);
+    ++r.vertex_cones;
+  }
+}
+
 }  // namespace
 
 ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, const std::vector<std::array<std::uint32_t, 2>>& edges,
@@ -177,7 +217,12 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
     }
     pending.swap(left);
   }
-  // What is left: a removal if a split nearby made one admissible, else a split.
+  {
+    std::vector<std::vector<std::uint32_t>> simplices;
+    for (const PendingEdge& e : pending) simplices.push_back({e.v[0], e.v[1]});
+    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return (long long)pending_degree(mesh, stamps, pending[k]); }, stamps, r);
+  }
+  // What is left: a removal if a split or cone nearby made one admissible, else a split.
   for (PendingEdge& e : pending) {
     bool gone = false;
     if (try_removal(e, gone)) continue;
@@ -188,9 +233,24 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
       ++r.edges_split;
     }
   }
-  // Faces that still exist: a 2-3 flip, else a split.
+  // Faces that still exist: 2-3 flips; then cones where cheaper than the face splits left (4 tets
+  // each); then a flip if one has become admissible, else a split.
+  auto exists = [&](const std::array<std::uint32_t, 3>& f) { return tets_with(mesh, f.data(), 3).size() == 2; };
+  std::vector<std::array<std::uint32_t, 3>> left;
   for (const auto& f : faces) {
-    if (tets_with(mesh, f.data(), 3).size() != 2) continue;
+    if (!exists(f)) continue;
+    if (flip_chord_face(mesh, rules, f))
+      ++r.faces_flipped;
+    else
+      left.push_back(f);
+  }
+  {
+    std::vector<std::vector<std::uint32_t>> simplices;
+    for (const auto& f : left) simplices.push_back({f[0], f[1], f[2]});
+    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return exists(left[k]) ? 4LL : 0LL; }, stamps, r);
+  }
+  for (const auto& f : left) {
+    if (!exists(f)) continue;
     if (flip_chord_face(mesh, rules, f))
       ++r.faces_flipped;
     else if (split(mesh, f.data(), 3))

@@ -145,7 +145,9 @@ class TetMesh {
   HalfFaceId vertex_half_face(VertexId v) const { return HalfFaceId(v2h_[v.idx()]); }
   bool vertex_is_boundary(VertexId v) const { return opp_[v2h_[v.idx()]] == kBoundary; }
   // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity), found by
-  // walking face neighbours around v from v2h (no cache involved). On a non-manifold ("pinched")
+  // walking face neighbours around v from v2h (no cache involved; O(d) for d tets: past 48 tets the
+  // walk marks visited tets in a per-thread buffer of one entry per tet slot, grown on demand and
+  // reused). On a non-manifold ("pinched")
   // vertex, whose tets are not connected through faces containing v, this is only the cluster
   // holding v2h[v]; vertex_tets(v) (cache) lists all tets containing v.
   void vertex_star(VertexId v, std::vector<TetId>& out) const;
