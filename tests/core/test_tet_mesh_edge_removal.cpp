@@ -60,18 +60,6 @@ Rational total_volume(const TetMesh& m) {
   return s;
 }
 
-std::set<std::array<std::uint32_t, 3>> oriented_boundary(const TetMesh& m) {
-  std::set<std::array<std::uint32_t, 3>> out;
-  for (std::uint32_t h = 0; h < 4 * m.num_tet_slots(); ++h) {
-    if (!m.tet_is_live(HalfFaceId(h).tet()) || !m.half_face_is_boundary(HalfFaceId(h))) continue;
-    const auto f = m.half_face_vertices(HalfFaceId(h));
-    std::array<std::uint32_t, 3> k = {f[0].idx(), f[1].idx(), f[2].idx()};
-    std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end());
-    out.insert(k);
-  }
-  return out;
-}
-
 std::set<std::array<std::uint32_t, 4>> sorted_tets(const TetMesh& m) {
   std::set<std::array<std::uint32_t, 4>> out;
   for (std::uint32_t t = 0; t < m.num_tet_slots(); ++t) {
@@ -131,7 +119,7 @@ TEST_CASE("remove_edge: every triangulation of random rings, against exact ratio
         CHECK(det6(q[0], q[1], q[2], q[3]) > 0);
       }
       const Rational volume = total_volume(base);
-      const auto boundary = oriented_boundary(base);
+      const auto boundary = mesh_test::oriented_boundary(base);
       for (const auto& tris : all) {
         // Oracle: all 2n-4 new tets strictly positive in exact rationals.
         bool oracle = true;
@@ -162,7 +150,7 @@ TEST_CASE("remove_edge: every triangulation of random rings, against exact ratio
         CHECK(m.num_free_tet_slots() == (n == 3 ? 1u : 0u));
         CHECK(!m.find_edge(VertexId(0), VertexId(1), nullptr, nullptr).is_valid());
         CHECK(sorted_tets(m) == expected);
-        CHECK(oriented_boundary(m) == boundary);
+        CHECK(mesh_test::oriented_boundary(m) == boundary);
         CHECK(total_volume(m) == volume);
       }
     }

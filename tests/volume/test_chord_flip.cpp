@@ -15,6 +15,7 @@
 #include <volmap/volume/volume_map.hpp>
 
 #include "map_test_meshes.hpp"
+#include "mesh_test_util.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -76,17 +77,6 @@ std::size_t edges_in_boundary_planes(const volmap::TetMesh& mesh, const std::vec
   return n;
 }
 
-std::set<std::array<std::uint32_t, 3>> oriented_boundary(const volmap::TetMesh& m) {
-  std::set<std::array<std::uint32_t, 3>> out;
-  for (volmap::HalfFaceId h : m.boundary_half_faces()) {
-    const auto f = m.half_face_vertices(h);
-    std::array<std::uint32_t, 3> k = {f[0].idx(), f[1].idx(), f[2].idx()};
-    std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end());
-    out.insert(k);
-  }
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("B0: a coarse cube onto a tetrahedron — chord edges inside a facet are flipped away, not split, and the map certifies") {
@@ -106,7 +96,7 @@ TEST_CASE("B0: a coarse cube onto a tetrahedron — chord edges inside a facet a
   const auto old_b0 = volmap::split_chords(split_only, report.blocking_chord_edges, report.blocking_chord_faces);
   CHECK(old_b0.tets_after > cube.num_tets() + within);
 
-  const auto boundary = oriented_boundary(state.source);
+  const auto boundary = mesh_test::oriented_boundary(state.source);
   const auto b0 = volmap::remove_blocking_chords(state, report);
   MESSAGE("coarse cube -> tet: " << within << " blocking chord edges; split-only B0 " << old_b0.tets_after << " tets, flips "
                                   << b0.tets_after << " (removed " << b0.edges_removed << ", split " << b0.edges_split << ")");
@@ -116,7 +106,7 @@ TEST_CASE("B0: a coarse cube onto a tetrahedron — chord edges inside a facet a
   const volmap::InvariantReport inv = state.source.check_invariants(true);
   INFO(inv.problem);
   CHECK(inv.ok);
-  CHECK(oriented_boundary(state.source) == boundary);
+  CHECK(mesh_test::oriented_boundary(state.source) == boundary);
   std::vector<std::uint8_t> locked_now = state.locked.data();
   CHECK(edges_in_boundary_planes(state.source, locked_now, state.target_xyz()) == 0);
   const volmap::FeasibilityReport after = volmap::analyze_feasibility(state);
@@ -176,7 +166,7 @@ TEST_CASE("B0 vertex cone: the star of a boundary vertex becomes the cone from o
   for (std::uint32_t v = 0; v < grid.num_vertices(); ++v) {
     if (!bnd[v]) continue;
     volmap::TetMesh m(grid);
-    const auto boundary = oriented_boundary(m);
+    const auto boundary = mesh_test::oriented_boundary(m);
     std::vector<volmap::TetId> star;
     m.vertex_star(volmap::VertexId(v), star);
     const std::size_t s = volmap::boundary_faces_at(m, v);
@@ -192,7 +182,7 @@ TEST_CASE("B0 vertex cone: the star of a boundary vertex becomes the cone from o
     CHECK(inv.ok);
     CHECK(m.num_tets() == grid.num_tets() + s);
     CHECK(m.num_vertices() == grid.num_vertices() + 1);
-    CHECK(oriented_boundary(m) == boundary);
+    CHECK(mesh_test::oriented_boundary(m) == boundary);
     const volmap::VertexId w(std::uint32_t(grid.num_vertices()));
     CHECK(!m.vertex_is_boundary(w));
     // Every edge left at v is an edge of ∂M (or the one to w): no interior edge of v's old star.

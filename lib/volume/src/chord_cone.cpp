@@ -5,6 +5,7 @@
 
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
+#include <volmap/volume/chord_rules.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 
 #include <algorithm>
@@ -14,25 +15,6 @@
 #include <vector>
 
 namespace volmap {
-
-namespace {
-
-// Shape of a tet in double (as chord_flip.cpp: 6·volume / (sum of squared edge lengths)^{3/2}).
-double shape(const double* const p[4]) {
-  double e[3][3], l2 = 0;
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < 3; ++i) e[k][i] = p[k][i] - p[3][i];
-  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  for (int a = 0; a < 4; ++a)
-    for (int b = a + 1; b < 4; ++b)
-      for (int i = 0; i < 3; ++i) l2 += (p[a][i] - p[b][i]) * (p[a][i] - p[b][i]);
-  return l2 > 0 ? det / (l2 * std::sqrt(l2)) : 0;
-}
-
-constexpr double kShapeRatio = 0.1;
-
-}  // namespace
 
 std::size_t boundary_faces_at(const TetMesh& mesh, std::uint32_t v) {
   if (!mesh.vertex_is_boundary(VertexId(v))) return 0;
@@ -57,7 +39,7 @@ bool cone_vertex_star(TetMesh& mesh, std::uint32_t v) {
     const auto tv = mesh.tet_vertices(t);
     const double* p[4];
     for (int i = 0; i < 4; ++i) p[i] = mesh.vertex_position(tv[i]);
-    worst = std::min(worst, shape(p));
+    worst = std::min(worst, tet_shape(p[0], p[1], p[2], p[3]));
     for (int i = 0; i < 4; ++i) {
       const bool opposite = tv[i].idx() == v;
       if (!opposite && !mesh.half_face_is_boundary(HalfFaceId(t, i))) continue;
@@ -72,8 +54,7 @@ bool cone_vertex_star(TetMesh& mesh, std::uint32_t v) {
   double w[3];
   if (!strict_kernel_point(triangles, w)) return false;  // exact: w strictly inside every face
   for (const auto& f : faces) {
-    const double* p[4] = {mesh.vertex_position(f[0]), mesh.vertex_position(f[1]), mesh.vertex_position(f[2]), w};
-    if (shape(p) < kShapeRatio * worst) return false;
+    if (tet_shape(mesh.vertex_position(f[0]), mesh.vertex_position(f[1]), mesh.vertex_position(f[2]), w) < kFixShapeRatio * worst) return false;
   }
   std::vector<CavityTet> fill;
   fill.reserve(faces.size());

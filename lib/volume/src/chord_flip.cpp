@@ -17,21 +17,6 @@ namespace {
 
 constexpr double kInvalid = -std::numeric_limits<double>::infinity();
 
-// Shape of a tet in double: 6·volume / (sum of squared edge lengths)^{3/2} (positive for a positive
-// tet; only ranks admissible candidates, never decides validity).
-double shape(const double* p0, const double* p1, const double* p2, const double* p3) {
-  const double* p[4] = {p0, p1, p2, p3};
-  double e[3][3], l2 = 0;
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < 3; ++i) e[k][i] = p[k][i] - p[3][i];
-  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  for (int a = 0; a < 4; ++a)
-    for (int b = a + 1; b < 4; ++b)
-      for (int i = 0; i < 3; ++i) l2 += (p[a][i] - p[b][i]) * (p[a][i] - p[b][i]);
-  return l2 > 0 ? det / (l2 * std::sqrt(l2)) : 0;
-}
-
 // A new tet: exactly positive in the source, and not a fixed non-positive image.
 bool admissible_tet(const TetMesh& mesh, const ChordRules& rules, const FpEnvironmentScope& fp, const std::array<std::uint32_t, 4>& v) {
   const double* p[4];
@@ -58,17 +43,14 @@ bool all_locked(const ChordRules& rules, const std::array<std::uint32_t, 4>& v) 
   return rules.locked(v[0]) && rules.locked(v[1]) && rules.locked(v[2]) && rules.locked(v[3]);
 }
 
-double tet_shape(const TetMesh& mesh, const std::array<std::uint32_t, 4>& v) {
-  return shape(mesh.vertex_position(VertexId(v[0])), mesh.vertex_position(VertexId(v[1])), mesh.vertex_position(VertexId(v[2])),
+double shape_of(const TetMesh& mesh, const std::array<std::uint32_t, 4>& v) {
+  return tet_shape(mesh.vertex_position(VertexId(v[0])), mesh.vertex_position(VertexId(v[1])), mesh.vertex_position(VertexId(v[2])),
                mesh.vertex_position(VertexId(v[3])));
 }
 
 std::array<std::uint32_t, 4> ids(const std::array<VertexId, 4>& v) { return {v[0].idx(), v[1].idx(), v[2].idx(), v[3].idx()}; }
 
-// A flip may not make the worst tet much worse than the worst tet it replaces: near-flat new tets
-// would stop later splits from finding an exactly positive point and hurt the untanglers.
-constexpr double kShapeRatio = 0.1;
-double shape_floor(double worst_replaced) { return kShapeRatio * worst_replaced; }
+double shape_floor(double worst_replaced) { return kFixShapeRatio * worst_replaced; }
 
 // Best triangulation of an edge's ring by dynamic programming over sub-polygons i..j: score[i][j] is
 // the best worst-tet shape of an admissible triangulation of i..j (kInvalid when none); the diagonal
@@ -84,7 +66,7 @@ class RingTriangulator {
     neighbours_.resize(std::size_t(n_));
     read_side_neighbours(t, a, b);
     double ring_worst = std::numeric_limits<double>::infinity();
-    mesh.edge_star(t, a, b, [&](TetId s) { ring_worst = std::min(ring_worst, tet_shape(mesh, ids(mesh.tet_vertices(s)))); });
+    mesh.edge_star(t, a, b, [&](TetId s) { ring_worst = std::min(ring_worst, shape_of(mesh, ids(mesh.tet_vertices(s)))); });
     floor_ = shape_floor(ring_worst);
   }
 
@@ -167,7 +149,7 @@ class RingTriangulator {
     const std::array<std::uint32_t, 4> lower = {r_[i], r_[k], r_[j], va_}, upper = {r_[j], r_[k], r_[i], vb_};
     if (!admissible_tet(mesh_, rules_, fp_, lower) || !admissible_tet(mesh_, rules_, fp_, upper)) return kInvalid;
     if (glued_to_bad(lower, i, k, j, bad_a_) || glued_to_bad(upper, i, k, j, bad_b_)) return kInvalid;
-    const double worst = std::min(tet_shape(mesh_, lower), tet_shape(mesh_, upper));
+    const double worst = std::min(shape_of(mesh_, lower), shape_of(mesh_, upper));
     return worst >= floor_ ? worst : kInvalid;
   }
 
@@ -230,12 +212,12 @@ bool flip_chord_face(TetMesh& mesh, const ChordRules& rules, const std::array<st
   const auto tv = mesh.tet_vertices(on_face);
   const TetId other = mesh.half_face_opposite(h).tet();
   const auto ov = mesh.tet_vertices(other);
-  const double floor = shape_floor(std::min(tet_shape(mesh, ids(tv)), tet_shape(mesh, ids(ov))));
+  const double floor = shape_floor(std::min(shape_of(mesh, ids(tv)), shape_of(mesh, ids(ov))));
   for (int j = 0; j < 4; ++j) {
     if (j == apex) continue;
     std::array<std::uint32_t, 4> v = ids(tv);
     v[j] = e;
-    if (tet_shape(mesh, v) < floor) return false;
+    if (shape_of(mesh, v) < floor) return false;
     if (!all_locked(rules, v)) continue;
     if (rules.fixed_tet_nonpositive(v) || glued_to_lasting_bad(mesh, rules, HalfFaceId(on_face, j)) ||
         glued_to_lasting_bad(mesh, rules, HalfFaceId(other, mesh.tet_local_index(other, tv[j]))))

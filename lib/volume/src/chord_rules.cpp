@@ -9,6 +9,19 @@
 
 namespace volmap {
 
+double tet_shape(const double* p0, const double* p1, const double* p2, const double* p3) {
+  const double* p[4] = {p0, p1, p2, p3};
+  double e[3][3], l2 = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) e[k][i] = p[k][i] - p[3][i];
+  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b)
+      for (int i = 0; i < 3; ++i) l2 += (p[a][i] - p[b][i]) * (p[a][i] - p[b][i]);
+  return l2 > 0 ? det / (l2 * std::sqrt(l2)) : 0;
+}
+
 ChordRules::ChordRules(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& target_xyz)
     : locked_(locked), target_(target_xyz) {
   const std::size_t nv = mesh.num_vertex_slots();

@@ -19,8 +19,7 @@ std::size_t boundary_faces_at(const TetMesh& mesh, std::uint32_t v);
 
 // Replaces the star of the boundary vertex v by the cone from a new vertex at a verified strict
 // kernel point of the star, when one exists and no new tet is much flatter than the flattest tet of
-// the star (below 0.1 times its shape, the rule of chord_flip.hpp). Returns false, leaving the mesh
-// untouched, otherwise.
+// the star (kFixShapeRatio, chord_rules.hpp). Returns false, leaving the mesh untouched, otherwise.
 bool cone_vertex_star(TetMesh& mesh, std::uint32_t v);
 
 }  // namespace volmap

@@ -3,8 +3,9 @@
 // face by a 2-3 flip (2 tets -> 3), without a new vertex. A fix is admissible only when every new tet
 // is exactly positive in the source (volmap predicates) and it creates no blocking simplex under the
 // rules of chord_rules.hpp: no new chord edge or chord face that blocks, no new tet with four locked
-// vertices whose fixed image is not positive. ∂M is never touched (the edited tets fill the same
-// cavity), vertex ids never change; a removal of degree 3 leaves a tombstone.
+// vertices whose fixed image is not positive, and no new tet much flatter than the flattest tet it
+// replaces (kFixShapeRatio). ∂M is never touched (the edited tets fill the same cavity), vertex
+// ids never change; a removal of degree 3 leaves a tombstone.
 #pragma once
 
 #include <volmap/core/tet_mesh.hpp>

@@ -17,6 +17,13 @@
 
 namespace volmap {
 
+// Shape of a tet in double: 6·volume / (sum of squared edge lengths)^{3/2}, positive for a positive
+// tet. It only ranks B0's candidate fixes and bounds their flatness, never decides validity: a fix
+// may not make its worst tet flatter than kFixShapeRatio times the worst tet it replaces (near-flat
+// tets stop later splits from finding an exactly positive point and hurt the untanglers).
+double tet_shape(const double* p0, const double* p1, const double* p2, const double* p3);
+inline constexpr double kFixShapeRatio = 0.1;
+
 class ChordRules {
  public:
   // locked[v] != 0 for the boundary vertices of `mesh`; target_xyz: 3 doubles per vertex (only the
