@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
                        {"chord_faces_split", r.chord_faces_split},
                        {"chord_edges_removed", r.chord_edges_removed},
                        {"chord_faces_flipped", r.chord_faces_flipped},
-                       {"chord_vertex_cones", r.chord_vertex_cones},
+                       {"chord_cone_patches", r.chord_cone_patches},
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};

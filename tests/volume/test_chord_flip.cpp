@@ -1,7 +1,8 @@
-// B0 (docs/mapping.md §4): blocking chords removed by flips where admissible, split otherwise.
-// Generated cases: a coarse Kuhn cube whose boundary is projected onto a regular tetrahedron (its
-// blocking chord edges join two points of one facet of the image) and a bipyramid whose middle face
-// lies in a facet of the target. Oracles independent of ChordRules: membership in the planes of all
+// B0 (docs/mapping.md §4): blocking chords removed by flips or cone patches where admissible, split
+// otherwise. Generated cases: a Kuhn cube and a cube coned from a corner (no interior vertex) whose
+// boundary is projected onto a regular tetrahedron (their blocking chord edges join two points of one
+// facet of the image), a bipyramid whose middle face lies in a facet of the target, cones over
+// single vertex stars. Oracles independent of ChordRules: membership in the planes of all
 // boundary image triangles, exact positivity (check_invariants), the oriented boundary before and
 // after, and the old split-only B0 (split_chords) as the growth to beat; the mapper must certify.
 #include <doctest/doctest.h>
@@ -75,6 +76,32 @@ std::size_t edges_in_boundary_planes(const volmap::TetMesh& mesh, const std::vec
     n += std::any_of(planes.begin(), planes.end(), [&](const auto& h) { return on(a, h) && on(b, h); });
   }
   return n;
+}
+
+// The unit cube as the cone from its corner (0,0,0) over the triangles of its three far faces (those
+// of the n×n×n Kuhn grid's boundary on x = 1, y = 1 or z = 1): every vertex on the boundary, every
+// interior edge and face a chord.
+volmap::TetMeshData corner_cone_cube(int n) {
+  const volmap::TetMeshData grid = map_test::kuhn_grid(n);
+  const volmap::TetMesh g(grid);
+  std::vector<std::uint32_t> id(grid.num_vertices(), volmap::kInvalidIndex);
+  volmap::TetMeshData out;
+  auto vertex = [&](std::uint32_t v) {
+    if (id[v] == volmap::kInvalidIndex) {
+      id[v] = std::uint32_t(out.num_vertices());
+      out.xyz.insert(out.xyz.end(), &grid.xyz[3 * v], &grid.xyz[3 * v] + 3);
+    }
+    return id[v];
+  };
+  const std::uint32_t corner = vertex(0);  // (0,0,0)
+  for (volmap::HalfFaceId h : g.boundary_half_faces()) {
+    const auto f = g.half_face_vertices(h);
+    bool far = false;
+    for (int axis = 0; axis < 3; ++axis)
+      far = far || std::all_of(f.begin(), f.end(), [&](volmap::VertexId v) { return grid.xyz[3 * v.idx() + axis] == 1.0; });
+    if (far) out.tets.insert(out.tets.end(), {vertex(f[0].idx()), vertex(f[1].idx()), vertex(f[2].idx()), corner});
+  }
+  return out;
 }
 
 }  // namespace
@@ -159,7 +186,7 @@ TEST_CASE("B0: a bipyramid whose middle face lies in a facet — one 2-3 flip in
   CHECK(r.source.num_vertices() == 5);
 }
 
-TEST_CASE("B0 vertex cone: the star of a boundary vertex becomes the cone from one interior vertex, +1 tet per face of ∂M at it") {
+TEST_CASE("B0 cone patch over one star: the star of a boundary vertex becomes the cone from one interior vertex, +1 tet per face of ∂M at it") {
   const volmap::TetMeshData grid = map_test::kuhn_grid(3);
   const auto bnd = map_test::grid_boundary_flags(3);
   int coned = 0;
@@ -192,4 +219,41 @@ TEST_CASE("B0 vertex cone: the star of a boundary vertex becomes the cone from o
   }
   MESSAGE("coned " << coned << " boundary vertices of the 3x3x3 Kuhn cube");
   CHECK(coned > 0);
+}
+
+TEST_CASE("B0 cone patch: a cube coned from a corner (no interior vertex) onto a tetrahedron — no flip helps, one cone does") {
+  const volmap::TetMeshData cube = corner_cone_cube(4);  // 96 tets, 62 vertices, all on the boundary
+  REQUIRE(cube.num_tets() == 96);
+  const volmap::BoundaryMap map = projected_map(cube, tetrahedron());
+  volmap::MapState state(cube, map);
+  const auto report = volmap::analyze_feasibility(state);
+  const std::size_t within = edges_in_boundary_planes(state.source, state.locked.data(), state.target_xyz());
+  REQUIRE(within > 0);
+  CHECK(report.blocking_chord_edges.size() == within);
+  volmap::TetMesh split_only(state.source);
+  const auto old_b0 = volmap::split_chords(split_only, report.blocking_chord_edges, report.blocking_chord_faces);
+  const auto boundary = mesh_test::oriented_boundary(state.source);
+  const std::size_t faces_of_boundary = boundary.size();
+  const auto b0 = volmap::remove_blocking_chords(state, report);
+  MESSAGE("corner-coned cube -> tet: split-only B0 " << old_b0.tets_after << " tets, B0 " << b0.tets_after << " (cone patches "
+                                                      << b0.cone_patches << ", removals " << b0.edges_removed << ", splits "
+                                                      << b0.edges_split + b0.faces_split << ")");
+  CHECK(b0.cone_patches >= 1);
+  CHECK(b0.tets_after < old_b0.tets_after);
+  // The whole cube is star-shaped: one patch from an interior point over the 120 faces of ∂M.
+  CHECK(b0.tets_after == faces_of_boundary);
+  CHECK(b0.vertices_added == b0.cone_patches);
+  CHECK(state.source.check_invariants(true).ok);
+  CHECK(mesh_test::oriented_boundary(state.source) == boundary);
+  CHECK(edges_in_boundary_planes(state.source, state.locked.data(), state.target_xyz()) == 0);
+  const auto after = volmap::analyze_feasibility(state);
+  CHECK(after.blocking_chord_edges.empty());
+  CHECK(after.blocking_chord_faces.empty());
+
+  volmap::VolumeMapOptions options;
+  options.max_threads = 1;
+  const auto r = volmap::compute_volume_map(cube, map, options);
+  CHECK(r.certified);
+  CHECK(r.chord_cone_patches == b0.cone_patches);
+  CHECK(r.source.num_tets() < old_b0.tets_after);
 }

@@ -139,34 +139,38 @@ std::size_t pending_degree(const TetMesh& mesh, const EditStamps& stamps, Pendin
                                                                                    mesh.tet_local_index(e.hint, VertexId(e.v[1])));
 }
 
-// Vertex cones (chord_cone.hpp) where they are cheaper than the splits the pending chords at a
-// vertex would cost: the cone at v adds one tet per face of ∂M at v and takes every chord at v with
-// it. `simplices` are the pending chords' vertices, split_cost(k) what fixing chord k by a split
-// would add now (0 when it is gone). Vertices by decreasing saving, each recomputed before its cone.
+// Cone patches (chord_cone.hpp) where they are cheaper than fixing the pending chords they take
+// away: `simplices` are the pending chords' vertices, split_cost(k) what fixing chord k by a split
+// would add now (0 when it is gone). Seeds: the vertices by decreasing cost of their chords.
 void cone_where_cheaper(TetMesh& mesh, const std::vector<std::vector<std::uint32_t>>& simplices,
                         const std::function<long long(std::size_t)>& split_cost, EditStamps& stamps, ChordSplitResult& r) {
   std::map<std::uint32_t, std::vector<std::size_t>> at;  // vertex -> pending chords
   for (std::size_t k = 0; k < simplices.size(); ++k)
     for (std::uint32_t v : simplices[k]) at[v].push_back(k);
-  auto saving = [&](std::uint32_t v) {
-    long long cost = 0;
-    for (std::size_t k : at[v]) cost += split_cost(k);
-    return cost - (long long)boundary_faces_at(mesh, v);
+  const PendingChordsAt chords = [&](std::uint32_t v) {
+    std::vector<std::pair<std::size_t, long long>> out;
+    const auto it = at.find(v);
+    if (it != at.end())
+      for (std::size_t k : it->second)
+        if (const long long c = split_cost(k); c > 0) out.push_back({k, c});
+    return out;
+  };
+  auto total = [&](std::uint32_t v) {
+    long long c = 0;
+    for (const auto& kc : chords(v)) c += kc.second;
+    return c;
   };
   std::vector<std::pair<long long, std::uint32_t>> order;
-  for (const auto& entry : at) order.push_back({saving(entry.first), entry.first});
+  for (const auto& entry : at) order.push_back({total(entry.first), entry.first});
   std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
-  std::vector<TetId> star;
-  for (const auto& [first_saving, v] : order) {
-    if (first_saving <= 0) break;
-    if (saving(v) <= 0) continue;
-    mesh.vertex_star(VertexId(v), star);
-    std::vector<std::uint32_t> around;
-    for (TetId t : star)
-      for (VertexId x : mesh.tet_vertices(t)) around.push_back(x.idx());
-    if (!cone_vertex_star(mesh, v)) continue;
-    stamps.edited(around, mesh);
-    ++r.vertex_cones;
+  std::vector<std::uint32_t> touched;
+  for (const auto& [first_cost, v] : order) {
+    if (first_cost <= 0) break;
+    if (total(v) <= 0) continue;
+    long long added = 0;
+    if (!cone_region(mesh, v, chords, ConeRegionLimits{}, &added, &touched)) continue;
+    stamps.edited(touched, mesh);
+    ++r.cone_patches;
   }
 }
 

@@ -116,7 +116,7 @@ class VolumeMapper {
     result_.chord_faces_split = cs.faces_split;
     result_.chord_edges_removed = cs.edges_removed;
     result_.chord_faces_flipped = cs.faces_flipped;
-    result_.chord_vertex_cones = cs.vertex_cones;
+    result_.chord_cone_patches = cs.cone_patches;
     result_.refined = cs.vertices_added > 0 || cs.edges_removed > 0 || cs.faces_flipped > 0;
   }
 

@@ -23,7 +23,7 @@ struct ChordSplitResult {
   std::size_t faces_split = 0;
   std::size_t edges_removed = 0;  // by an edge removal flip (remove_blocking_chords only)
   std::size_t faces_flipped = 0;  // by a 2-3 flip (remove_blocking_chords only)
-  std::size_t vertex_cones = 0;   // stars of boundary vertices replaced by a cone (remove_blocking_chords only)
+  std::size_t cone_patches = 0;   // regions replaced by a cone (remove_blocking_chords only)
   std::size_t tets_before = 0;
   std::size_t tets_after = 0;
   std::size_t vertices_added = 0;
