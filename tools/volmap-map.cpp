@@ -19,7 +19,7 @@
 // --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte or --initial → TLC → link-kernel →
 // local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
-// Cone-repair refinement (B1) is not implemented yet: with --refined-input only B0 chord splits refine.
+// With --refined-input, B0 (chord flips and splits, docs/mapping.md §4) and B1 (cone repair, §7) may refine the source.
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
@@ -174,6 +174,9 @@ int main(int argc, char** argv) {
                        {"boundary_volume_sign", r.feasibility.boundary_volume_sign},
                        {"chord_edges_split", r.chord_edges_split},
                        {"chord_faces_split", r.chord_faces_split},
+                       {"chord_edges_removed", r.chord_edges_removed},
+                       {"chord_faces_flipped", r.chord_faces_flipped},
+                       {"chord_cone_patches", r.chord_cone_patches},
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};

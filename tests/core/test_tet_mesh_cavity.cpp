@@ -60,20 +60,6 @@ void require_adjacency_as_rebuilt(const TetMesh& m) {
   CHECK(wrong_boundary == 0);
 }
 
-// Oriented boundary triangles (rotated to start at the smallest id), from the brute-force face map.
-std::set<Triple> oriented_boundary(const TetMesh& m) {
-  std::set<Triple> out;
-  const auto& tv = m.tet_vertex_array();
-  for (const auto& [face, hfs] : mesh_test::brute_faces(tv)) {
-    if (hfs.size() != 1) continue;
-    Triple f;
-    for (int k = 0; k < 3; ++k) f[k] = tv[4 * (hfs[0] / 4) + kTetFace[hfs[0] % 4][k]];
-    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
-    out.insert(f);
-  }
-  return out;
-}
-
 // The outward face (local i) of tet t, as vertex ids.
 std::array<VertexId, 3> face_of(const TetMesh& m, TetId t, int i) { return m.half_face_vertices(HalfFaceId(t, i)); }
 
@@ -182,7 +168,7 @@ TEST_CASE("replace_cavity: random star-shaped ball cavities of a Kuhn grid repla
   VertexProperty<double> weight(m, 0.5);
   for (std::uint32_t t = 0; t < m.num_tet_slots(); ++t) tag[TetId(t)] = int(t);
   for (std::uint32_t v = 0; v < m.num_vertex_slots(); ++v) weight[VertexId(v)] = double(v);
-  const std::set<Triple> boundary = oriented_boundary(m);
+  const std::set<Triple> boundary = mesh_test::oriented_boundary(m);
   std::mt19937 rng(20261124);
   int new_apex = 0, kept_apex = 0, deleted_total = 0;
   for (int round = 0; round < 60; ++round) {
@@ -226,7 +212,7 @@ TEST_CASE("replace_cavity: random star-shaped ball cavities of a Kuhn grid repla
     require_ok(m);
     require_adjacency_as_rebuilt(m);
     CHECK(m.topology_version() != version);
-    CHECK(oriented_boundary(m) == boundary);
+    CHECK(mesh_test::oriented_boundary(m) == boundary);
     CHECK(m.num_tets() == nt - cavity.size() + fill.size());
     CHECK(m.num_vertices() == nv - dropped.size() + (keep_c ? 0 : 1));
     REQUIRE(r.tets.size() == fill.size());
@@ -272,7 +258,7 @@ TEST_CASE("replace_cavity: random star-shaped ball cavities of a Kuhn grid repla
   CHECK(m.tet_vertex_array() == live.tets);
   CHECK(m.positions() == live.xyz);
   for (std::uint32_t v = 0; v < m.num_vertex_slots(); ++v) CHECK(weight[VertexId(v)] != 0.5);
-  CHECK(oriented_boundary(m).size() == boundary.size());
+  CHECK(mesh_test::oriented_boundary(m).size() == boundary.size());
   (void)remap;
 }
 

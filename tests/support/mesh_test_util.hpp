@@ -4,6 +4,7 @@
 
 #include <volmap/core/local_tables.hpp>
 #include <volmap/core/mesh_data.hpp>
+#include <volmap/core/tet_mesh.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
@@ -47,6 +48,21 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32
     }
   }
   return m;
+}
+
+// The oriented boundary triangles of a mesh's live tets (each rotated to start at its smallest id),
+// from the brute-force face map (independent of the mesh's own boundary cache).
+inline std::set<Triple> oriented_boundary(const volmap::TetMesh& m) {
+  std::set<Triple> out;
+  const auto& tv = m.tet_vertex_array();
+  for (const auto& [face, hfs] : brute_faces(tv)) {
+    if (hfs.size() != 1) continue;
+    Triple f;
+    for (int k = 0; k < 3; ++k) f[k] = tv[4 * (hfs[0] / 4) + volmap::kTetFace[hfs[0] % 4][k]];
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    out.insert(f);
+  }
+  return out;
 }
 
 inline int orient_tet(const std::vector<double>& xyz, const std::uint32_t* p) {

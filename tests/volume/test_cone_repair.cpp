@@ -14,6 +14,7 @@
 #include <volmap/check/tetmesh_checks.hpp>
 
 #include "map_test_meshes.hpp"
+#include "mesh_test_util.hpp"
 #include "test_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -346,18 +347,7 @@ TEST_CASE("cone repair on a TetMesh: every property follows the patches, the bou
     weight[volmap::VertexId(v)] = 0.5 * v;
   }
   for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) tag[volmap::TetId(t)] = int(t);
-  auto oriented_boundary = [&mesh] {
-    std::vector<std::array<std::uint32_t, 3>> out;
-    for (volmap::HalfFaceId h : mesh.boundary_half_faces()) {
-      const auto f = mesh.half_face_vertices(h);
-      std::array<std::uint32_t, 3> g = {f[0].idx(), f[1].idx(), f[2].idx()};
-      std::rotate(g.begin(), std::min_element(g.begin(), g.end()), g.end());
-      out.push_back(g);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-  };
-  const auto boundary0 = oriented_boundary();
+  const auto boundary0 = mesh_test::oriented_boundary(mesh);
   const std::vector<double> positions0 = mesh.positions();
   const std::size_t nv0 = mesh.num_vertices();
   const auto r = volmap::cone_repair(mesh, target, locked);
@@ -366,7 +356,7 @@ TEST_CASE("cone repair on a TetMesh: every property follows the patches, the bou
   CHECK(mesh.num_free_tet_slots() + mesh.num_tets() == mesh.num_tet_slots());
   const auto inv = mesh.check_invariants(true);  // source exactly positive, structure sound
   CHECK_MESSAGE(inv.ok, inv.problem);
-  CHECK(oriented_boundary() == boundary0);
+  CHECK(mesh_test::oriented_boundary(mesh) == boundary0);
   CHECK(mesh.num_vertices() == nv0 + r.vertices_added);
   for (std::uint32_t v = 0; v < nv0; ++v) {
     const volmap::VertexId id(v);

@@ -162,6 +162,21 @@ void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
   out.clear();
   const std::uint32_t h0 = v2h_[v.idx()];
   if (h0 == kNone) return;
+  // Tets already queued: a linear search while the star is small, then a per-thread mark per tet
+  // slot (a generation counter; the buffer only grows), so a star of d tets costs O(d).
+  constexpr std::size_t kLinear = 48;
+  thread_local std::vector<std::uint32_t> mark;
+  thread_local std::uint32_t generation = 0;
+  bool marking = false;
+  auto start_marking = [&] {
+    if (mark.size() < num_tet_slots()) mark.resize(num_tet_slots(), 0);
+    if (++generation == 0) {
+      std::fill(mark.begin(), mark.end(), 0u);
+      generation = 1;
+    }
+    for (TetId t : out) mark[t.idx()] = generation;
+    marking = true;
+  };
   out.push_back(TetId(h0 >> 2));
   for (std::size_t q = 0; q < out.size(); ++q) {
     const std::uint32_t t = out[q].idx();
@@ -171,7 +186,14 @@ void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
       const std::uint32_t o = opp_[4 * std::size_t(t) + i];
       if (o == kBoundary) continue;
       const TetId n(o >> 2);
-      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+      if (!marking && out.size() >= kLinear) start_marking();
+      if (marking) {
+        if (mark[n.idx()] == generation) continue;
+        mark[n.idx()] = generation;
+        out.push_back(n);
+      } else if (std::find(out.begin(), out.end(), n) == out.end()) {
+        out.push_back(n);
+      }
     }
   }
   std::sort(out.begin(), out.end());

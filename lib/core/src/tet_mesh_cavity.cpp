@@ -12,6 +12,7 @@
 #include "face_grouping.hpp"
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -174,7 +175,12 @@ class CavityPlan {
   // with an interior or new vertex cannot). Each vertex's star is searched: at a pinched vertex
   // vertex_star walks one cluster only.
   void check_glued_faces_are_new() const {
-    std::vector<TetId> star;
+    std::map<std::uint32_t, std::vector<TetId>> stars;  // each vertex's star walked once
+    auto star_of = [&](std::uint32_t v) -> const std::vector<TetId>& {
+      auto [it, added] = stars.try_emplace(v);
+      if (added) mesh_.vertex_star(VertexId(v), it->second);
+      return it->second;
+    };
     for (const auto& glue : glued) {
       const std::uint32_t* f = &fill_tv[4 * std::size_t(glue.first / 4)];
       std::uint32_t x[3];
@@ -182,7 +188,7 @@ class CavityPlan {
       if (!(sorted_contains(boundary_vertices_, x[0]) && sorted_contains(boundary_vertices_, x[1]) && sorted_contains(boundary_vertices_, x[2])))
         continue;
       for (int k = 0; k < 3; ++k) {
-        mesh_.vertex_star(VertexId(x[k]), star);
+        const std::vector<TetId>& star = star_of(x[k]);
         for (TetId s : star)
           if (!sorted_contains(in_cavity_, s.idx()) && mesh_.tet_local_index(s, VertexId(x[(k + 1) % 3])) >= 0 &&
               mesh_.tet_local_index(s, VertexId(x[(k + 2) % 3])) >= 0)

@@ -5,7 +5,7 @@
 //            surfaces, atomic outputs
 //   check    check_tet_mesh, self-intersection, check_map, metrics
 //   surface  domains, surface maps onto them (OpenMesh TriMesh boundary), their check
-//   volume   Tutte 3D, FFM/TLC untangling, chord splits, cone repair, compute_volume_map
+//   volume   Tutte 3D, FFM/TLC untangling, blocking-chord removal, cone repair, compute_volume_map
 // Conventions (docs/conventions.md): a VOLMAP-positive tet (v0,v1,v2,v3) has orient3d > 0; ids are
 // 0-based in memory (Medit files are 1-based); tet vertex order is the user's, never changed.
 #pragma once
@@ -43,6 +43,9 @@
 #include <volmap/surface/surface_map.hpp>
 #include <volmap/surface/surface_map_check.hpp>
 
+#include <volmap/volume/chord_cone.hpp>
+#include <volmap/volume/chord_flip.hpp>
+#include <volmap/volume/chord_rules.hpp>
 #include <volmap/volume/chord_split.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/feasibility.hpp>

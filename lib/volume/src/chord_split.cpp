@@ -2,9 +2,13 @@
 #include <volmap/volume/chord_split.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/volume/chord_cone.hpp>
+#include <volmap/volume/chord_flip.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
+#include <functional>
+#include <map>
 
 namespace volmap {
 
@@ -73,7 +77,193 @@ bool split(TetMesh& mesh, const std::uint32_t* verts, int n) {
   return true;
 }
 
+std::size_t edge_degree(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
+  int a = -1, b = -1;
+  const TetId t = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
+  return t.is_valid() ? mesh.edge_degree(t, a, b) : 0;
+}
+
+// When was each vertex last in an edited region (a counter, not time)? Whether a chord fix is
+// admissible depends only on the tets around the chord, the edges between the vertices of those
+// tets and the tets across their faces, so a fix that failed cannot succeed before an edit touches
+// one of those vertices: the chord's own vertices or its ring (its apexes for a face).
+class EditStamps {
+ public:
+  std::uint64_t now() const { return tick_; }
+  // The edge's vertices and its ring; empty when the edge is gone. `hint`: a tet that held the edge
+  // (updated; slots are reused, so it is checked), which spares a walk around a high-degree vertex.
+  std::vector<std::uint32_t> neighbourhood(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e, TetId& hint) const {
+    std::vector<std::uint32_t> out;
+    int a = -1, b = -1;
+    if (hint.is_valid() && hint.idx() < mesh.num_tet_slots() && mesh.tet_is_live(hint)) {
+      a = mesh.tet_local_index(hint, VertexId(e[0]));
+      b = mesh.tet_local_index(hint, VertexId(e[1]));
+    }
+    if (a < 0 || b < 0) hint = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
+    if (!hint.is_valid()) return out;
+    mesh.edge_star(hint, a, b, [&](TetId t) {
+      for (VertexId v : mesh.tet_vertices(t)) out.push_back(v.idx());
+    });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  bool touched_since(const std::vector<std::uint32_t>& vertices, std::uint64_t tick) const {
+    for (std::uint32_t v : vertices)
+      if (v < stamp_.size() && stamp_[v] > tick) return true;
+    return false;
+  }
+  void edited(const std::vector<std::uint32_t>& vertices, const TetMesh& mesh) {
+    ++tick_;
+    stamp_.resize(mesh.num_vertex_slots(), 0);
+    for (std::uint32_t v : vertices) stamp_[v] = tick_;
+  }
+
+ private:
+  std::uint64_t tick_ = 1;
+  std::vector<std::uint64_t> stamp_;
+};
+
+// One blocking chord edge waiting for a fix, when a removal last failed on it (0: never tried) and
+// a tet that held it.
+struct PendingEdge {
+  std::array<std::uint32_t, 2> v;
+  std::uint64_t failed_at;
+  TetId hint;
+  std::vector<std::uint32_t> around;  // its neighbourhood when the removal failed
+};
+
+// The tets around the pending edge e (0 when it is gone).
+std::size_t pending_degree(const TetMesh& mesh, const EditStamps& stamps, PendingEdge& e) {
+  return stamps.neighbourhood(mesh, e.v, e.hint).empty() ? 0 : mesh.edge_degree(e.hint, mesh.tet_local_index(e.hint, VertexId(e.v[0])),
+                                                                                   mesh.tet_local_index(e.hint, VertexId(e.v[1])));
+}
+
+// Cone patches (chord_cone.hpp) where they are cheaper than fixing the pending chords they take
+// away: `simplices` are the pending chords' vertices, split_cost(k) what fixing chord k by a split
+// would add now (0 when it is gone). Seeds: the vertices by decreasing cost of their chords.
+void cone_where_cheaper(TetMesh& mesh, const std::vector<std::vector<std::uint32_t>>& simplices,
+                        const std::function<long long(std::size_t)>& split_cost, EditStamps& stamps, ChordSplitResult& r) {
+  std::map<std::uint32_t, std::vector<std::size_t>> at;  // vertex -> pending chords
+  for (std::size_t k = 0; k < simplices.size(); ++k)
+    for (std::uint32_t v : simplices[k]) at[v].push_back(k);
+  const PendingChordsAt chords = [&](std::uint32_t v) {
+    std::vector<std::pair<std::size_t, long long>> out;
+    const auto it = at.find(v);
+    if (it != at.end())
+      for (std::size_t k : it->second)
+        if (const long long c = split_cost(k); c > 0) out.push_back({k, c});
+    return out;
+  };
+  auto total = [&](std::uint32_t v) {
+    long long c = 0;
+    for (const auto& kc : chords(v)) c += kc.second;
+    return c;
+  };
+  std::vector<std::pair<long long, std::uint32_t>> order;
+  for (const auto& entry : at) order.push_back({total(entry.first), entry.first});
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
+  std::vector<std::uint32_t> touched;
+  for (const auto& [first_cost, v] : order) {
+    if (first_cost <= 0) break;
+    if (total(v) <= 0) continue;
+    long long added = 0;
+    if (!cone_region(mesh, v, chords, ConeRegionLimits{}, &added, &touched)) continue;
+    stamps.edited(touched, mesh);
+    ++r.cone_patches;
+  }
+}
+
 }  // namespace
+
+ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                                        const std::vector<std::array<std::uint32_t, 3>>& faces) {
+  ChordSplitResult r;
+  r.tets_before = mesh.num_tets();
+  const std::size_t nv0 = mesh.num_vertices();
+  EditStamps stamps;
+  // Edges: removals by increasing degree, repeated while they make progress; a removal that failed
+  // is tried again only after an edit touched the edge's neighbourhood.
+  std::vector<std::pair<std::size_t, std::array<std::uint32_t, 2>>> by_degree;
+  for (const auto& e : edges) by_degree.push_back({edge_degree(mesh, e), e});
+  std::stable_sort(by_degree.begin(), by_degree.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<PendingEdge> pending;
+  for (const auto& de : by_degree) pending.push_back({de.second, 0, TetId::kInvalid, {}});
+  // A removal of e unless it failed before and nothing around it changed since (the neighbourhood
+  // stored at the failure holds e's vertices, so any change of e's star is seen). Sets `gone` when
+  // e no longer exists.
+  auto try_removal = [&](PendingEdge& e, bool& gone) {
+    gone = false;
+    if (e.failed_at != 0 && !stamps.touched_since(e.around, e.failed_at)) return false;
+    std::vector<std::uint32_t> around = stamps.neighbourhood(mesh, e.v, e.hint);
+    if (around.empty()) {
+      gone = true;
+      return false;
+    }
+    if (remove_chord_edge(mesh, rules, e.v[0], e.v[1])) {
+      stamps.edited(around, mesh);
+      ++r.edges_removed;
+      return true;
+    }
+    e.failed_at = stamps.now();
+    e.around = std::move(around);
+    return false;
+  };
+  for (bool progress = true; progress;) {
+    progress = false;
+    std::vector<PendingEdge> left;
+    for (PendingEdge& e : pending) {
+      bool gone = false;
+      if (try_removal(e, gone))
+        progress = true;
+      else if (!gone)
+        left.push_back(std::move(e));
+    }
+    pending.swap(left);
+  }
+  {
+    std::vector<std::vector<std::uint32_t>> simplices;
+    for (const PendingEdge& e : pending) simplices.push_back({e.v[0], e.v[1]});
+    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return (long long)pending_degree(mesh, stamps, pending[k]); }, stamps, r);
+  }
+  // What is left: a removal if a split or cone nearby made one admissible, else a split.
+  for (PendingEdge& e : pending) {
+    bool gone = false;
+    if (try_removal(e, gone)) continue;
+    if (gone) continue;
+    const std::vector<std::uint32_t> around = stamps.neighbourhood(mesh, e.v, e.hint);
+    if (!around.empty() && split(mesh, e.v.data(), 2)) {
+      stamps.edited(around, mesh);
+      ++r.edges_split;
+    }
+  }
+  // Faces that still exist: 2-3 flips; then cones where cheaper than the face splits left (4 tets
+  // each); then a flip if one has become admissible, else a split.
+  auto exists = [&](const std::array<std::uint32_t, 3>& f) { return tets_with(mesh, f.data(), 3).size() == 2; };
+  std::vector<std::array<std::uint32_t, 3>> left;
+  for (const auto& f : faces) {
+    if (!exists(f)) continue;
+    if (flip_chord_face(mesh, rules, f))
+      ++r.faces_flipped;
+    else
+      left.push_back(f);
+  }
+  {
+    std::vector<std::vector<std::uint32_t>> simplices;
+    for (const auto& f : left) simplices.push_back({f[0], f[1], f[2]});
+    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return exists(left[k]) ? 4LL : 0LL; }, stamps, r);
+  }
+  for (const auto& f : left) {
+    if (!exists(f)) continue;
+    if (flip_chord_face(mesh, rules, f))
+      ++r.faces_flipped;
+    else if (split(mesh, f.data(), 3))
+      ++r.faces_split;
+  }
+  r.tets_after = mesh.num_tets();
+  r.vertices_added = mesh.num_vertices() - nv0;
+  return r;
+}
 
 ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& edges,
                               const std::vector<std::array<std::uint32_t, 3>>& faces) {

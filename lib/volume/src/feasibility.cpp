@@ -3,39 +3,12 @@
 #include <volmap/volume/feasibility.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/volume/chord_rules.hpp>
 #include <volmap/predicates.hpp>
 
 #include <algorithm>
-#include <cmath>
 
 namespace volmap {
-
-namespace {
-
-// Are the points others[0..n) (positions by P) within tol of the plane of triangle (p0, p1, p2)?
-// False for a triangle degenerate in double.
-template <class Positions>
-bool within_plane(const double* p0, const double* p1, const double* p2, const std::uint32_t* others, int n, const Positions& P,
-                  double tol) {
-  double e1[3], e2[3], nrm[3];
-  for (int i = 0; i < 3; ++i) {
-    e1[i] = p1[i] - p0[i];
-    e2[i] = p2[i] - p0[i];
-  }
-  nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
-  const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-  if (!(len > 0)) return false;
-  for (int j = 0; j < n; ++j) {
-    const double* q = P(others[j]);
-    const double d = ((q[0] - p0[0]) * nrm[0] + (q[1] - p0[1]) * nrm[1] + (q[2] - p0[2]) * nrm[2]) / len;
-    if (!(std::abs(d) <= tol)) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 FeasibilityReport analyze_feasibility(const TetMeshData& source, const std::vector<std::uint8_t>& locked,
                                       const std::vector<double>& target_xyz) {
@@ -54,16 +27,7 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
   const double* X = target_xyz.data();
   auto P = [X](std::uint32_t v) { return X + 3 * std::size_t(v); };
 
-  // Domain scale from the boundary images.
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (std::size_t v = 0; v < nv; ++v)
-    if (locked[v])
-      for (int i = 0; i < 3; ++i) {
-        lo[i] = std::min(lo[i], X[3 * v + i]);
-        hi[i] = std::max(hi[i], X[3 * v + i]);
-      }
-  const double scale = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0});
-  const double tol = 1e-6 * scale;
+  const ChordRules rules(source, locked, target_xyz);
 
   // Boundary faces (outward) and the enclosed volume's sign.
   const Span<HalfFaceId> bfaces = source.boundary_half_faces();
@@ -74,19 +38,6 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
   }
   static_assert(sizeof(btri[0]) == 3 * sizeof(std::uint32_t), "triangles are read as 3 ids each");
   report.boundary_volume_sign = enclosed_volume_sign(X, nv, btri.empty() ? nullptr : btri[0].data(), btri.size());
-  std::vector<TetId> star;
-  // Are the points `others` (n of them) within tol of the plane of some boundary triangle at `a`?
-  auto in_facet_plane_at = [&](std::uint32_t a, const std::uint32_t* others, int n) {
-    source.vertex_star(VertexId(a), star);
-    for (TetId t : star)
-      for (int i = 0; i < 4; ++i) {
-        const HalfFaceId h(t, i);
-        if (!source.half_face_is_boundary(h) || source.half_face_apex(h).idx() == a) continue;
-        const auto f = source.half_face_vertices(h);
-        if (within_plane(P(f[0].idx()), P(f[1].idx()), P(f[2].idx()), others, n, P, tol)) return true;
-      }
-    return false;
-  };
 
   // All edges as sorted pairs, each with whether it is on the boundary (its edge star is open).
   struct Edge {
@@ -112,11 +63,7 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
     if (!locked[e[0]]) has_interior_neighbour[e[1]] = 1;
     if (!locked[e[0]] || !locked[e[1]] || on_boundary) continue;
     report.chord_edges.push_back(e);
-    const std::uint32_t other[1] = {e[1]};
-    const std::uint32_t other2[1] = {e[0]};
-    const bool coincident = points_equal(P(e[0]), P(e[1]));
-    if (coincident || in_facet_plane_at(e[0], other, 1) || in_facet_plane_at(e[1], other2, 1))
-      report.blocking_chord_edges.push_back(e);
+    if (rules.edge_blocks(e[0], e[1])) report.blocking_chord_edges.push_back(e);
   }
   for (std::size_t v = 0; v < nv; ++v)
     if (!locked[v] && has_neighbour[v] && !has_interior_neighbour[v]) report.fixed_link_vertices.push_back(std::uint32_t(v));
@@ -149,11 +96,7 @@ FeasibilityReport analyze_feasibility(const TetMesh& source, const std::vector<s
   for (const ChordFace& f : faces) {
     const auto& k = f.key;
     report.chord_faces.push_back(k);
-    bool blocking = collinear(P(k[0]), P(k[1]), P(k[2]));
-    if (!blocking) {
-      const std::uint32_t others[2] = {k[1], k[2]};
-      blocking = in_facet_plane_at(k[0], others, 2);
-    }
+    bool blocking = rules.face_image_blocks(k[0], k[1], k[2]);
     if (!blocking && locked[f.d] && locked[f.e]) {
       const int sd = orient3d(P(k[0]), P(k[1]), P(k[2]), P(f.d));
       const int se = orient3d(P(k[0]), P(k[1]), P(k[2]), P(f.e));

@@ -33,9 +33,12 @@ std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& s
   return find_local_infeasibility(s.source, s.locked.data(), s.target_xyz());
 }
 
-ChordSplitResult split_blocking_chords(MapState& s, const FeasibilityReport& report) {
+ChordSplitResult remove_blocking_chords(MapState& s, const FeasibilityReport& report) {
   s.require_compact();
-  return split_chords(s.source, report.blocking_chord_edges, report.blocking_chord_faces);  // splits leave no tombstone
+  const ChordRules rules(s.source, s.locked.data(), s.target_xyz());
+  const ChordSplitResult r = remove_blocking_chords(s.source, rules, report.blocking_chord_edges, report.blocking_chord_faces);
+  if (s.source.num_free_tet_slots() > 0) s.source.compact();  // a degree-3 removal frees a slot; vertex ids stay
+  return r;
 }
 
 void place_by_tutte(MapState& s) {

@@ -34,7 +34,7 @@ class VolumeMapper {
 
   VolumeMapResult run() {
     analyze();
-    if (options_.allow_refinement) split_blocking_chords_stage();
+    if (options_.allow_refinement) remove_blocking_chords_stage();
     start_map();
     // A boundary image enclosing a non-positive volume (mirrored map): no map exists at any
     // refinement (the target volumes sum to that volume), so no untangler is run.
@@ -107,14 +107,17 @@ class VolumeMapper {
     });
   }
 
-  void split_blocking_chords_stage() {
+  void remove_blocking_chords_stage() {
     const FeasibilityReport& f = result_.feasibility;
     if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty()) return;
     ChordSplitResult cs;
-    timed_stage("chord-split", [&] { cs = split_blocking_chords(state_, f); });
+    timed_stage("chord-split", [&] { cs = remove_blocking_chords(state_, f); });
     result_.chord_edges_split = cs.edges_split;
     result_.chord_faces_split = cs.faces_split;
-    result_.refined = cs.vertices_added > 0;
+    result_.chord_edges_removed = cs.edges_removed;
+    result_.chord_faces_flipped = cs.faces_flipped;
+    result_.chord_cone_patches = cs.cone_patches;
+    result_.refined = cs.vertices_added > 0 || cs.edges_removed > 0 || cs.faces_flipped > 0;
   }
 
   // Tutte 3D, or the given initial map (chord-split vertices placed by a local Laplacian).

@@ -145,7 +145,9 @@ class TetMesh {
   HalfFaceId vertex_half_face(VertexId v) const { return HalfFaceId(v2h_[v.idx()]); }
   bool vertex_is_boundary(VertexId v) const { return opp_[v2h_[v.idx()]] == kBoundary; }
   // Tets containing v, sorted by id, written into `out` (cleared first; reuses its capacity), found by
-  // walking face neighbours around v from v2h (no cache involved). On a non-manifold ("pinched")
+  // walking face neighbours around v from v2h (no cache involved; O(d) for d tets: past 48 tets the
+  // walk marks visited tets in a per-thread buffer of one entry per tet slot, grown on demand and
+  // reused). On a non-manifold ("pinched")
   // vertex, whose tets are not connected through faces containing v, this is only the cluster
   // holding v2h[v]; vertex_tets(v) (cache) lists all tets containing v.
   void vertex_star(VertexId v, std::vector<TetId>& out) const;
@@ -234,6 +236,22 @@ class TetMesh {
   // 3-2 flip of the interior edge (local a, local b) of t of degree 3.
   bool can_flip_3_2(TetId t, int a, int b, const double* xyz = nullptr) const;
   std::array<TetId, 2> flip_3_2(TetId t, int a, int b);
+  // Edge removal (the n -> 2n-4 flip, tet_mesh_edge_removal.cpp; n = 3 is the 3-2 flip) of the
+  // interior edge (local a, local b) of t, va and vb its vertices. edge_ring lists the n vertices
+  // around the edge in rotation order, oriented so that (ring[i], ring[i+1], vb, va) is an even
+  // permutation of the tet holding them (positive for a positive mesh); it throws Error(Failed) for
+  // a boundary edge. A triangulation of the ring polygon is n-2 triangles of ring positions
+  // (i, j, k), i < j < k; each becomes the tets (ring[i], ring[j], ring[k], va) and
+  // (ring[k], ring[j], ring[i], vb). can_remove_edge: the topology allows it (interior edge, the
+  // triangles triangulate the polygon, no diagonal is an edge yet) and every new tet is strictly
+  // positive (exact) under xyz (3 per vertex slot; nullptr = the mesh's positions).
+  std::vector<VertexId> edge_ring(TetId t, int a, int b) const;
+  bool can_remove_edge(TetId t, int a, int b, const std::vector<std::array<int, 3>>& triangles, const double* xyz = nullptr) const;
+  // Throws Error(Failed) when the topology forbids it (geometry is not checked). Returns the 2n-4
+  // new tets (fill order: the va tet then the vb tet of each triangle); they take the ring's slots
+  // first, so n = 3 leaves one tombstone. Labels and tet properties: those of the ring tet
+  // (ring[i], ring[i+1]) of each triangle's first corner.
+  std::vector<TetId> remove_edge(TetId t, int a, int b, const std::vector<std::array<int, 3>>& triangles);
   // Cavity replacement (tet_mesh_cavity.cpp): the live tets `cavity` (normally a topological ball)
   // are replaced by the tets `fill`, over the cavity's vertices and new ones at `new_positions`
   // (3 doubles per new vertex, each used by some fill tet). The fill must close onto the cavity: every

@@ -9,6 +9,7 @@
 
 #include <volmap/core/mesh_data.hpp>
 #include <volmap/core/tet_mesh.hpp>
+#include <volmap/volume/chord_rules.hpp>
 
 #include <array>
 #include <cstddef>
@@ -20,6 +21,9 @@ namespace volmap {
 struct ChordSplitResult {
   std::size_t edges_split = 0;
   std::size_t faces_split = 0;
+  std::size_t edges_removed = 0;  // by an edge removal flip (remove_blocking_chords only)
+  std::size_t faces_flipped = 0;  // by a 2-3 flip (remove_blocking_chords only)
+  std::size_t cone_patches = 0;   // regions replaced by a cone (remove_blocking_chords only)
   std::size_t tets_before = 0;
   std::size_t tets_after = 0;
   std::size_t vertices_added = 0;
@@ -30,6 +34,15 @@ struct ChordSplitResult {
 // every child exactly positive (a near-degenerate simplex).
 ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& edges,
                               const std::vector<std::array<std::uint32_t, 3>>& faces);
+
+// B0 as the mapper runs it (docs/mapping.md §4): the cheapest admissible fix for each blocking
+// chord. Edges: an edge removal (chord_flip.hpp; n -> 2n-4 tets), tried over all edges by increasing
+// degree and again while removals make progress (each one changes its neighbours' rings); every
+// edge still left is removed if a removal has become admissible, else split (n -> 2n). Then faces
+// that still exist: a 2-3 flip (+1 tet), else a split (+4). No fix creates a blocking simplex, so
+// the mesh ends without any. A removal of degree 3 leaves a tombstone (compact() afterwards).
+ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                                        const std::vector<std::array<std::uint32_t, 3>>& faces);
 
 // The same on flat arrays: the result is written back compacted (original ids kept, new vertices
 // appended, locked extended with 0).

@@ -22,8 +22,9 @@ namespace volmap {
 FeasibilityReport analyze_feasibility(const MapState& state);
 // §10 exact local infeasibility certificates of the current state (only the locked targets are read).
 std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& state);
-// §4 B0: splits the blocking chords of `report`; new vertices are unlocked, their target unset.
-ChordSplitResult split_blocking_chords(MapState& state, const FeasibilityReport& report);
+// §4 B0: removes the blocking chords of `report` by the cheapest admissible fix (flip or split);
+// new vertices are unlocked, their target unset; the mesh is compacted (no vertex is deleted).
+ChordSplitResult remove_blocking_chords(MapState& state, const FeasibilityReport& report);
 // §2: every unlocked vertex at the uniform-Laplacian (Tutte) solution for the locked ones.
 void place_by_tutte(MapState& state);
 // The same for the vertices after the first `keep` only (the rest keep their target): vertices made

@@ -89,6 +89,8 @@ struct VolumeMapResult {
   std::size_t nonpositive = 0;      // exact count at the end
   std::size_t input_tets = 0, input_vertices = 0;
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
+  std::size_t chord_edges_removed = 0, chord_faces_flipped = 0;  // B0 flips (no new vertex)
+  std::size_t chord_cone_patches = 0;                              // B0 cone patches (one new vertex each)
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity

@@ -1,0 +1,162 @@
+// chord_cone.cpp — B0's cone patches (docs/mapping.md §4; conventions in chord_cone.hpp). Faces of
+// ∂R are listed in the outward order of the R tet they bound (kTetFace), so a point q sees one from
+// inside iff orient3d(face, q) > 0 and the cone tet is (face, w). A region is a sorted list of tets.
+#include <volmap/volume/chord_cone.hpp>
+
+#include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/volume/chord_rules.hpp>
+#include <volmap/volume/kernel_lp.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace volmap {
+
+namespace {
+
+bool contains(const std::vector<TetId>& sorted, TetId t) { return std::binary_search(sorted.begin(), sorted.end(), t); }
+
+// A region with an admissible cone: ∂R's faces, the R tet behind each, and the apex.
+struct ConePlan {
+  std::vector<TetId> region;
+  std::vector<std::array<VertexId, 3>> faces;
+  std::vector<TetId> parents;
+  double apex[3] = {0, 0, 0};
+  long long cost() const { return (long long)faces.size() - (long long)region.size(); }
+};
+
+// Plans the cone over `region` (sorted); false when it is not admissible.
+bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
+  plan.region = std::move(region);
+  plan.faces.clear();
+  plan.parents.clear();
+  double worst = std::numeric_limits<double>::infinity();
+  std::set<std::uint32_t> on_boundary, all;
+  for (TetId t : plan.region) {
+    const auto tv = mesh.tet_vertices(t);
+    worst = std::min(worst, tet_shape(mesh.vertex_position(tv[0]), mesh.vertex_position(tv[1]), mesh.vertex_position(tv[2]),
+                                      mesh.vertex_position(tv[3])));
+    for (int i = 0; i < 4; ++i) {
+      all.insert(tv[i].idx());
+      const HalfFaceId o = mesh.half_face_opposite(HalfFaceId(t, i));
+      if (o.is_valid() && contains(plan.region, o.tet())) continue;
+      const auto f = mesh.half_face_vertices(HalfFaceId(t, i));
+      plan.faces.push_back(f);
+      plan.parents.push_back(t);
+      for (VertexId x : f) on_boundary.insert(x.idx());
+    }
+  }
+  if (on_boundary.size() != all.size()) return false;  // a vertex strictly inside R would be lost
+  std::vector<double> triangles;
+  triangles.reserve(9 * plan.faces.size());
+  for (const auto& f : plan.faces)
+    for (VertexId x : f) triangles.insert(triangles.end(), mesh.vertex_position(x), mesh.vertex_position(x) + 3);
+  if (!strict_kernel_point(triangles, plan.apex)) return false;  // exact: the apex sees every face from inside
+  for (const auto& f : plan.faces)
+    if (tet_shape(mesh.vertex_position(f[0]), mesh.vertex_position(f[1]), mesh.vertex_position(f[2]), plan.apex) < kFixShapeRatio * worst)
+      return false;
+  return true;
+}
+
+bool commit(TetMesh& mesh, const ConePlan& plan) {
+  std::vector<CavityTet> fill;
+  fill.reserve(plan.faces.size());
+  for (std::size_t k = 0; k < plan.faces.size(); ++k)
+    fill.push_back({{plan.faces[k][0], plan.faces[k][1], plan.faces[k][2], CavityTet::new_vertex(0)}, plan.parents[k]});
+  try {
+    mesh.replace_cavity(plan.region, fill, {plan.apex[0], plan.apex[1], plan.apex[2]});
+  } catch (const Error&) {  // refused (e.g. a region that is not a ball): untouched
+    return false;
+  }
+  return true;
+}
+
+std::vector<TetId> star_of(const TetMesh& mesh, std::uint32_t v) {
+  std::vector<TetId> star;
+  mesh.vertex_star(VertexId(v), star);
+  return star;  // sorted
+}
+
+std::vector<TetId> merged(const std::vector<TetId>& a, const std::vector<TetId>& b) {
+  std::vector<TetId> out;
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+}  // namespace
+
+std::size_t boundary_faces_at(const TetMesh& mesh, std::uint32_t v) {
+  if (!mesh.vertex_is_boundary(VertexId(v))) return 0;
+  thread_local std::vector<TetId> star;
+  mesh.vertex_star(VertexId(v), star);
+  std::size_t n = 0;
+  for (TetId t : star)
+    for (int i = 0; i < 4; ++i)
+      n += mesh.half_face_is_boundary(HalfFaceId(t, i)) && mesh.tet_vertex(t, i).idx() != v;
+  return n;
+}
+
+bool cone_vertex_star(TetMesh& mesh, std::uint32_t v) {
+  if (!mesh.vertex_is_boundary(VertexId(v))) return false;
+  ConePlan plan;
+  return plan_cone(mesh, star_of(mesh, v), plan) && commit(mesh, plan);
+}
+
+bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chords, const ConeRegionLimits& limits, long long* added,
+                 std::vector<std::uint32_t>* touched) {
+  if (!mesh.vertex_is_boundary(VertexId(seed))) return false;
+  std::set<std::size_t> taken;  // chords the region takes away
+  long long beaten = 0;         // what they would cost otherwise
+  // The chords at v not taken yet, and what they cost.
+  auto gain = [&](std::uint32_t v, bool take) {
+    long long g = 0;
+    for (const auto& [id, cost] : chords(v)) {
+      if (taken.count(id)) continue;
+      g += cost;
+      if (take) taken.insert(id);
+    }
+    return g;
+  };
+  ConePlan best;
+  if (!plan_cone(mesh, star_of(mesh, seed), best)) return false;
+  beaten += gain(seed, true);
+  std::set<std::uint32_t> members = {seed}, refused;
+  for (int step = 0; step < limits.max_steps; ++step) {
+    // The boundary vertex of R with the most costly chords not taken yet.
+    std::uint32_t next = kInvalidIndex;
+    long long next_gain = -1;
+    for (TetId t : best.region)
+      for (VertexId x : mesh.tet_vertices(t)) {
+        if (members.count(x.idx()) || refused.count(x.idx()) || !mesh.vertex_is_boundary(x)) continue;
+        const long long g = gain(x.idx(), false);
+        if (g > next_gain || (g == next_gain && x.idx() < next)) {
+          next = x.idx();
+          next_gain = g;
+        }
+      }
+    if (next == kInvalidIndex) break;
+    std::vector<TetId> grown = merged(best.region, star_of(mesh, next));
+    ConePlan plan;
+    if (grown.size() > limits.max_tets || !plan_cone(mesh, std::move(grown), plan) || plan.cost() - best.cost() > next_gain) {
+      refused.insert(next);
+      continue;
+    }
+    best = std::move(plan);
+    members.insert(next);
+    beaten += gain(next, true);
+  }
+  if (best.cost() >= beaten || !commit(mesh, best)) return false;
+  *added = best.cost();
+  if (touched) {  // R's vertices: all on ∂R
+    touched->clear();
+    for (const auto& f : best.faces)
+      for (VertexId x : f) touched->push_back(x.idx());
+  }
+  return true;
+}
+
+}  // namespace volmap
