@@ -42,7 +42,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
   std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
-  double max_growth = 0.05, time_limit = 60;
+  double max_growth = 0.05, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
@@ -59,6 +59,8 @@ int main(int argc, char** argv) {
       ->check(finite_non_negative());
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
+  app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--time-limit", time_limit, "soft time limit in seconds (default 60; 0 = none: every stage then runs to its own iteration cap, which can take many minutes)")
       ->check(finite_non_negative());
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
@@ -115,6 +117,7 @@ int main(int argc, char** argv) {
     opt.time_limit_seconds = time_limit;
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
+    opt.quality_relative_decrease = quality_tol;
     opt.tlc_time_share = tlc_share;
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;

@@ -91,9 +91,17 @@ TEST_CASE("FFM untangles scrambled interior vertices and the exact check certifi
       if (bnd[v])
         for (int i = 0; i < 3; ++i) CHECK(target[3 * v + i] == before[3 * v + i]);  // bit-exact boundary
     // Quality pass keeps validity.
+    // The stop rule: an iteration lowering the energy by less than half of it ends a pass that
+    // would otherwise go lower (from the same start). The longer pass keeps its lowest valid point
+    // even when its line search gives up at the end (it used to return a worse trial point).
+    auto early_target = target;
+    auto early = volmap::ffm_quality_pass(m.xyz, m.tets, bnd, early_target, volmap::ReferenceShape::RegularTet, 200, 10, 0.5);
+    CHECK(volmap::count_nonpositive(early_target, m.tets) == 0);
     auto q = volmap::ffm_quality_pass(m.xyz, m.tets, bnd, target, volmap::ReferenceShape::RegularTet, 200, 10);
     CHECK(volmap::count_nonpositive(target, m.tets) == 0);
     CHECK(q.energy_after <= q.energy_before);
+    CHECK(early.energy_after < early.energy_before);
+    CHECK(q.energy_after < early.energy_after);
   }
 }
 

@@ -703,7 +703,8 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
 
 QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                                const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
-                               ReferenceShape reference, int max_iterations, double time_limit_seconds) {
+                               ReferenceShape reference, int max_iterations, double time_limit_seconds,
+                               double relative_decrease) {
   QualityResult result;
   if (count_nonpositive(target_xyz, tets) != 0) return result;
   FfmEnergy energy(source_xyz, tets, locked, target_xyz, reference, 0.5);
@@ -720,6 +721,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   obj.barrier = true;
   obj.stop_when_certified = false;
   obj.budget = TimeBudget(time_limit_seconds);
+  obj.track_lowest = true;
   const std::vector<double> x0 = energy.initial_variables();
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), Eigen::Index(x0.size()));
   result.energy_before = energy.evaluate(x.data(), eps, nullptr);
@@ -733,7 +735,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
       best_energy = e;
     }
   };
-  const LBFGSpp::LBFGSParam<double> param = untangle::lbfgs_param(max_iterations, 1e-6, 0, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO);
+  const LBFGSpp::LBFGSParam<double> param = untangle::lbfgs_param(max_iterations, 1e-6, relative_decrease, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO);
   LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
   try {
     result.rounds = int(std::max<long>(0, untangle::run_lbfgs(solver, obj, x)));
@@ -741,6 +743,7 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
   } catch (const untangle::TimeStop&) {
     consider(obj.last_x);
   }
+  if (obj.lowest_x.size() == x.size()) consider(obj.lowest_x);
   if (best_energy < result.energy_before) {
     energy.write_back(best.data(), candidate);
     if (count_nonpositive(candidate, tets) == 0) {

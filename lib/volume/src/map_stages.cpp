@@ -82,10 +82,11 @@ LocalUntangleResult run_local_ffm(MapState& s, const LocalUntangleOptions& optio
   });
 }
 
-QualityResult run_quality_pass(MapState& s, ReferenceShape reference, int max_iterations, double time_limit_seconds) {
+QualityResult run_quality_pass(MapState& s, ReferenceShape reference, int max_iterations, double time_limit_seconds,
+                               double relative_decrease) {
   return on_flat_target(s, [&](std::vector<double>& x) {
     return ffm_quality_pass(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, reference, max_iterations,
-                            time_limit_seconds);
+                            time_limit_seconds, relative_decrease);
   });
 }
 

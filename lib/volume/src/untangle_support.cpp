@@ -129,6 +129,10 @@ double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g
     grad.setZero();
     return std::numeric_limits<double>::infinity();
   }
+  if (track_lowest && all_positive && e < lowest_energy) {
+    lowest_energy = e;
+    lowest_x = x;
+  }
   if (stop_when_certified && all_positive && evaluations >= next_exact_check) {
     if (exactly_certified(x.data())) {
       last_x = x;

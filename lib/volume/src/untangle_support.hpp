@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace volmap::untangle {
@@ -91,6 +92,8 @@ struct StallStop {};
 // double count of non-positive tets (reported by the energy in `double_nonpositive`) has stayed
 // at most stall_max_bad without a new minimum for stall_evaluations evaluations.
 // `last_x` holds the point at which a stop was thrown (for a stall: the point of the minimum).
+// With track_lowest, `lowest_x` holds the lowest-energy evaluated point whose double determinants
+// are all positive (a line search that gives up leaves the solver at a worse trial point).
 struct GuardedObjective {
   // E(vars); writes the gradient when grad != nullptr and sets *all_positive (double test).
   std::function<double(const double* vars, double* grad, bool* all_positive)> evaluate;
@@ -111,6 +114,9 @@ struct GuardedObjective {
   long fewest_at = 0;                   // evaluation that reached fewest_nonpositive
   Eigen::VectorXd fewest_x;             // its point: where a StallStop leaves the run
   Eigen::VectorXd last_x;
+  bool track_lowest = false;
+  double lowest_energy = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd lowest_x;
 
   bool past_deadline() const { return budget.expired(); }
   // Records the count of this evaluation at x; true when the run has stalled (see above).

@@ -270,7 +270,8 @@ class VolumeMapper {
   void quality() {
     double seconds = std::max(options_.quality_min_seconds, options_.quality_time_ratio * total_.elapsed());
     if (budget_->limited()) seconds = std::min(seconds, budget_->remaining());
-    judged_stage("quality", [&] { run_quality_pass(state_, ReferenceShape::RestShape, options_.quality_iterations, seconds); }, "");
+    judged_stage("quality", [&] { run_quality_pass(state_, ReferenceShape::RestShape, options_.quality_iterations, seconds,
+                                                      options_.quality_relative_decrease); }, "");
   }
 
   // ---- the result -----------------------------------------------------------------------------

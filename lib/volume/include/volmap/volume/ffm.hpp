@@ -116,9 +116,12 @@ struct QualityResult {
 // Quality pass that never breaks validity: minimises the FFM energy at ε = 1e-10 with a line search
 // that rejects any step making a double determinant non-positive, and keeps a result only when the
 // exact check passes on it (otherwise the input is kept). Requires a certified target on entry.
+// Stops after max_iterations L-BFGS iterations, at the time limit, or (relative_decrease > 0) at the
+// first iteration that lowers the energy by less than relative_decrease × its value.
 QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                                const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
-                               ReferenceShape reference, int max_iterations, double time_limit_seconds);
+                               ReferenceShape reference, int max_iterations, double time_limit_seconds,
+                               double relative_decrease = 0);
 
 // The FFM energy on the free variables (exposed for tests and benchmarks).
 // Variables: 3 doubles per free vertex, in increasing vertex id, in the scaled frame (target box

@@ -37,7 +37,8 @@ RelocationResult run_link_kernel(MapState& state, int max_sweeps);
 KernelDescentResult run_kernel_descent(MapState& state);
 FfmResult run_ffm(MapState& state, const FfmOptions& options);
 LocalUntangleResult run_local_ffm(MapState& state, const LocalUntangleOptions& options);
-QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds);
+QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds,
+                               double relative_decrease);
 // §7 B1 cone repair; the mesh is compacted afterwards when a patch freed slots.
 ConeRepairResult run_cone_repair(MapState& state, const ConeRepairOptions& options);
 

@@ -41,7 +41,10 @@ struct VolumeMapOptions {
   // The quality pass may use at most max(quality_min_seconds, quality_time_ratio × the time spent
   // before it), and never more than the time limit leaves.
   double quality_min_seconds = 2.0;
-  double quality_time_ratio = 1.0;
+  double quality_time_ratio = 0.25;
+  // ... and stops at the first L-BFGS iteration lowering the energy by less than this fraction of it
+  // (0: only the iteration cap and the time share stop it).
+  double quality_relative_decrease = 1e-4;
   int max_threads = 0;             // 0 = TBB default; 1 = one core (benchmarks)
   // Cascade (MapMethod::Ffm): the fraction of the remaining time given to the first TLC stage (the
   // small-lift TLC round then gets 0.3 of what is left, FFM the rest). MapMethod::Tlc gives TLC the
