@@ -40,7 +40,7 @@ struct VolumeMapOptions {
   int quality_iterations = 300;
   // The quality pass may use at most max(quality_min_seconds, quality_time_ratio × the time spent
   // before it), and never more than the time limit leaves.
-  double quality_min_seconds = 2.0;
+  double quality_min_seconds = 0.25;
   double quality_time_ratio = 0.25;
   // ... and stops at the first L-BFGS iteration lowering the energy by less than this fraction of it
   // (0: only the iteration cap and the time share stop it).
