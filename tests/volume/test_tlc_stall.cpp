@@ -34,35 +34,35 @@ long run_script(volmap::untangle::GuardedObjective& obj, const std::vector<std::
   return -1;
 }
 
+volmap::untangle::GuardedObjective stall_objective(long evaluations, std::size_t max_bad) {
+  volmap::untangle::GuardedObjective obj;
+  obj.stall_evaluations = evaluations;
+  obj.stall_max_bad = max_bad;
+  return obj;
+}
+
 }  // namespace
 
 TEST_CASE("stall stop: after stall_evaluations without a new minimum within stall_max_bad, at the minimum") {
   const std::vector<std::size_t> counts = {40, 12, 9, 11, 10, 8, 12, 9, 13, 9, 9, 9, 9, 9};
   double left_at = -1;
   SUBCASE("enabled: 9 at 2, a new minimum 8 at 5 restarts the wait, no better one in the next 4 -> stop at 9, left at 5") {
-    volmap::untangle::GuardedObjective obj;
-    obj.stall_evaluations = 4;
-    obj.stall_max_bad = 10;
+    auto obj = stall_objective(4, 10);
     CHECK(run_script(obj, counts, &left_at) == 9);
     CHECK(left_at == 5.0);
   }
   SUBCASE("a repeated count is not a new minimum: the 9s at 5 and 7 do not restart the wait from 2") {
     const std::vector<std::size_t> repeats = {40, 12, 9, 11, 10, 9, 12, 9, 13};
-    volmap::untangle::GuardedObjective obj;
-    obj.stall_evaluations = 4;
-    obj.stall_max_bad = 10;
+    auto obj = stall_objective(4, 10);
     CHECK(run_script(obj, repeats, &left_at) == 6);
     CHECK(left_at == 2.0);
   }
   SUBCASE("minimum never within the bound: no stop") {
-    volmap::untangle::GuardedObjective obj;
-    obj.stall_evaluations = 4;
-    obj.stall_max_bad = 7;
+    auto obj = stall_objective(4, 7);
     CHECK(run_script(obj, counts, &left_at) == -1);
   }
   SUBCASE("disabled (stall_evaluations 0): no stop") {
-    volmap::untangle::GuardedObjective obj;
-    obj.stall_max_bad = 100;
+    auto obj = stall_objective(0, 100);
     CHECK(run_script(obj, counts, &left_at) == -1);
   }
 }

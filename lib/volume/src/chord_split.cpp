@@ -77,10 +77,17 @@ bool split(TetMesh& mesh, const std::uint32_t* verts, int n) {
   return true;
 }
 
-std::size_t edge_degree(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e) {
-  int a = -1, b = -1;
-  const TetId t = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
-  return t.is_valid() ? mesh.edge_degree(t, a, b) : 0;
+// Finds the edge e: `hint` (a tet that held e; slots are reused, so it is checked) or else a walk,
+// which a hint spares around a high-degree vertex. Sets a, b to e's local indices in the tet it
+// returns in `hint`; false when e is gone.
+bool locate_edge(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e, TetId& hint, int& a, int& b) {
+  a = b = -1;
+  if (hint.is_valid() && hint.idx() < mesh.num_tet_slots() && mesh.tet_is_live(hint)) {
+    a = mesh.tet_local_index(hint, VertexId(e[0]));
+    b = mesh.tet_local_index(hint, VertexId(e[1]));
+  }
+  if (a < 0 || b < 0) hint = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
+  return hint.is_valid();
 }
 
 // When was each vertex last in an edited region (a counter, not time)? Whether a chord fix is
@@ -90,17 +97,11 @@ std::size_t edge_degree(const TetMesh& mesh, const std::array<std::uint32_t, 2>&
 class EditStamps {
  public:
   std::uint64_t now() const { return tick_; }
-  // The edge's vertices and its ring; empty when the edge is gone. `hint`: a tet that held the edge
-  // (updated; slots are reused, so it is checked), which spares a walk around a high-degree vertex.
+  // The edge's vertices and its ring; empty when the edge is gone (`hint`: see locate_edge).
   std::vector<std::uint32_t> neighbourhood(const TetMesh& mesh, const std::array<std::uint32_t, 2>& e, TetId& hint) const {
     std::vector<std::uint32_t> out;
     int a = -1, b = -1;
-    if (hint.is_valid() && hint.idx() < mesh.num_tet_slots() && mesh.tet_is_live(hint)) {
-      a = mesh.tet_local_index(hint, VertexId(e[0]));
-      b = mesh.tet_local_index(hint, VertexId(e[1]));
-    }
-    if (a < 0 || b < 0) hint = mesh.find_edge(VertexId(e[0]), VertexId(e[1]), &a, &b);
-    if (!hint.is_valid()) return out;
+    if (!locate_edge(mesh, e, hint, a, b)) return out;
     mesh.edge_star(hint, a, b, [&](TetId t) {
       for (VertexId v : mesh.tet_vertices(t)) out.push_back(v.idx());
     });
@@ -134,9 +135,9 @@ struct PendingEdge {
 };
 
 // The tets around the pending edge e (0 when it is gone).
-std::size_t pending_degree(const TetMesh& mesh, const EditStamps& stamps, PendingEdge& e) {
-  return stamps.neighbourhood(mesh, e.v, e.hint).empty() ? 0 : mesh.edge_degree(e.hint, mesh.tet_local_index(e.hint, VertexId(e.v[0])),
-                                                                                   mesh.tet_local_index(e.hint, VertexId(e.v[1])));
+std::size_t pending_degree(const TetMesh& mesh, PendingEdge& e) {
+  int a = -1, b = -1;
+  return locate_edge(mesh, e.v, e.hint, a, b) ? mesh.edge_degree(e.hint, a, b) : 0;
 }
 
 // Cone patches (chord_cone.hpp) where they are cheaper than fixing the pending chords they take
@@ -184,11 +185,15 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
   EditStamps stamps;
   // Edges: removals by increasing degree, repeated while they make progress; a removal that failed
   // is tried again only after an edit touched the edge's neighbourhood.
-  std::vector<std::pair<std::size_t, std::array<std::uint32_t, 2>>> by_degree;
-  for (const auto& e : edges) by_degree.push_back({edge_degree(mesh, e), e});
+  std::vector<std::pair<std::size_t, PendingEdge>> by_degree;
+  for (const auto& e : edges) {
+    PendingEdge p{e, 0, TetId::kInvalid, {}};
+    const std::size_t degree = pending_degree(mesh, p);
+    by_degree.push_back({degree, std::move(p)});
+  }
   std::stable_sort(by_degree.begin(), by_degree.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   std::vector<PendingEdge> pending;
-  for (const auto& de : by_degree) pending.push_back({de.second, 0, TetId::kInvalid, {}});
+  for (auto& de : by_degree) pending.push_back(std::move(de.second));
   // A removal of e unless it failed before and nothing around it changed since (the neighbourhood
   // stored at the failure holds e's vertices, so any change of e's star is seen). Sets `gone` when
   // e no longer exists.
@@ -224,7 +229,7 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
   {
     std::vector<std::vector<std::uint32_t>> simplices;
     for (const PendingEdge& e : pending) simplices.push_back({e.v[0], e.v[1]});
-    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return (long long)pending_degree(mesh, stamps, pending[k]); }, stamps, r);
+    cone_where_cheaper(mesh, simplices, [&](std::size_t k) { return (long long)pending_degree(mesh, pending[k]); }, stamps, r);
   }
   // What is left: a removal if a split or cone nearby made one admissible, else a split.
   for (PendingEdge& e : pending) {
