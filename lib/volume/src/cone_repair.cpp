@@ -27,6 +27,8 @@ namespace {
 constexpr std::uint32_t kNone = kInvalidIndex;
 // The apex of a patch before it exists in the mesh (replace_cavity's name for its first new vertex).
 constexpr std::uint32_t kPendingApex = CavityTet::kFirstNewVertex;
+// Alternative positions tried for a new apex whose patch cannot be built (ConeRepairer::moved_apex).
+constexpr int kApexRetries = 4;
 
 using Tri = std::array<std::uint32_t, 3>;
 
@@ -831,28 +833,51 @@ class ConeRepairer {
     return kNone;
   }
 
-  // The cones (F, w) over ∂R with R's other interior vertices re-inserted; false (counted) when a
-  // vertex cannot be re-inserted or a tet is not exactly positive in both spaces.
-  bool build_patch(std::uint32_t w, const std::vector<std::uint32_t>& interior, std::vector<LocalTet>& live) {
+  // The cones (F, w) over ∂R with R's other interior vertices re-inserted into `live`.
+  enum class PatchBuild { ok, reinsertion, not_positive };
+  PatchBuild build_patch(std::uint32_t w, const std::vector<std::uint32_t>& interior, std::vector<LocalTet>& live) {
     std::vector<LocalTet> local;
     local.reserve(faces_.size() + 8 * interior.size());
     for (const auto& f : faces_) local.push_back({{f.v[0], f.v[1], f.v[2], w}, f.inner_tet, false});
     for (std::uint32_t v : interior)
-      if (v != w && !insert_vertex(v, local)) {
-        ++res_.failures.reinsertion;
-        return false;
-      }
+      if (v != w && !insert_vertex(v, local)) return PatchBuild::reinsertion;
     live.clear();
     for (const auto& lt : local) {
       if (lt.dead) continue;
       const auto& v = lt.v;
-      if (fp_.orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || fp_.orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0) {
-        ++res_.failures.not_positive;
-        return false;
-      }
+      if (fp_.orient3d(S(v[0]), S(v[1]), S(v[2]), S(v[3])) <= 0 || fp_.orient3d(T(v[0]), T(v[1]), T(v[2]), T(v[3])) <= 0)
+        return PatchBuild::not_positive;
       live.push_back(lt);
     }
-    return true;
+    return PatchBuild::ok;
+  }
+
+  // The k-th alternative source position of a new apex: p moved by a fraction of ∂R's source extent
+  // along a fixed generic direction, kept only when it still sees every ∂R face strictly (exact).
+  // An LP kernel point of a region cut from a regular grid tends to lie on a grid plane through
+  // interior vertices of R: their re-insertion then meets cone tets that are flat to rounding.
+  bool moved_apex(const double* p, int k, double* out) const {
+    static constexpr double kDirections[kApexRetries][3] = {
+        {0.5377, -0.2311, 0.8103}, {-0.6923, 0.4512, 0.5633}, {0.3190, 0.8837, -0.3425}, {-0.4469, -0.7146, -0.5383}};
+    double lo[3] = {S(faces_[0].v[0])[0], S(faces_[0].v[0])[1], S(faces_[0].v[0])[2]}, hi[3] = {lo[0], lo[1], lo[2]};
+    for (const auto& f : faces_)
+      for (std::uint32_t v : f.v)
+        for (int d = 0; d < 3; ++d) {
+          lo[d] = std::min(lo[d], S(v)[d]);
+          hi[d] = std::max(hi[d], S(v)[d]);
+        }
+    const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    std::vector<double> tri_t, tri_s;
+    face_triangles(tri_t, tri_s);
+    for (double step : {1e-2, 1e-3, 1e-4}) {
+      double moved[3];
+      for (int d = 0; d < 3; ++d) moved[d] = p[d] + step * extent * kDirections[k][d];
+      if (verified_inside(fp_, tri_s, moved)) {
+        std::copy(moved, moved + 3, out);
+        return true;
+      }
+    }
+    return false;
   }
 
   // Replaces R (region_, its ∂R in faces_) by the cone patch from a strict kernel point (source p,
@@ -882,7 +907,17 @@ class ConeRepairer {
     if (apex != kNone)
       for (int d = 0; d < 3; ++d) tx_[VertexId(w)][d] = q[d];
     std::vector<LocalTet> live;
-    if (!build_patch(w, interior, live)) return restore(PatchOutcome::refused);
+    PatchBuild built = build_patch(w, interior, live);
+    // A new apex in a degenerate spot (see moved_apex) is moved and the patch built again.
+    for (int k = 0; built != PatchBuild::ok && apex == kNone && k < kApexRetries; ++k) {
+      if (!moved_apex(p, k, pending_p_)) continue;
+      restore(PatchOutcome::refused);
+      built = build_patch(w, interior, live);
+    }
+    if (built != PatchBuild::ok) {
+      ++(built == PatchBuild::reinsertion ? res_.failures.reinsertion : res_.failures.not_positive);
+      return restore(PatchOutcome::refused);
+    }
     const long long net = (long long)live.size() - (long long)region_.size();
     if (net > budget_left()) return restore(PatchOutcome::over_budget);
     std::vector<TetId> cavity;
@@ -892,7 +927,7 @@ class ConeRepairer {
     fill.reserve(live.size());
     for (const LocalTet& lt : live)
       fill.push_back({{VertexId(lt.v[0]), VertexId(lt.v[1]), VertexId(lt.v[2]), VertexId(lt.v[3])}, TetId(lt.parent)});
-    const std::vector<double> new_positions = apex == kNone ? std::vector<double>(p, p + 3) : std::vector<double>();
+    const std::vector<double> new_positions = apex == kNone ? std::vector<double>(pending_p_, pending_p_ + 3) : std::vector<double>();
     CavityReplacement made;
     try {
       made = mesh_.replace_cavity(cavity, fill, new_positions);
