@@ -15,6 +15,10 @@
 // drops only the domains whose map fails (recorded per domain, the mesh it failed on kept in
 // <group>_failed/) and publishes the others. --keep-unrefined also publishes the mesh before any
 // surface-map split as <group>_unrefined/<name>.mesh (no benchmark group; for growth figures).
+// --mesh-per-domain (volmap's layout extension, for end-to-end figures per (mesh, domain)): every
+// domain maps its own copy of the TetGen mesh, <group>/<name>.mesh is that unsplit mesh, and a
+// domain whose map split boundary edges publishes its mesh as <group>_<dom>/<name>_<dom>.mesh beside
+// the map (VOLMAP's own tools, which read only <group>/<name>.mesh, cannot read such a case).
 #include "support/tool_common.hpp"
 
 #include <volmap/io/atomic_file.hpp>
@@ -28,6 +32,7 @@
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <mutex>
 #include <sstream>
@@ -59,6 +64,7 @@ struct SurfaceOutcome {
   int refinement_passes = 0;
   std::size_t faces = 0, decimated_faces = 0;  // input triangles; after --decimate (0 = not decimated)
   std::size_t tetgen_tets = 0, tets = 0;       // after TetGen; published (after surface-map splits)
+  std::vector<std::pair<std::string, std::size_t>> domain_tets;  // --mesh-per-domain: (domain, its mesh's tets)
   std::vector<std::pair<std::string, std::string>> failed_domains;  // (domain, reason) with --keep-going
 };
 
@@ -66,6 +72,7 @@ struct DatasetOptions {
   std::vector<std::string> domains;
   std::string quality, max_volume;
   bool coarse = false, keep_going = false, keep_unrefined = false;
+  bool mesh_per_domain = false;  // each domain maps its own copy of the TetGen mesh (layout extension)
   std::size_t decimate = 0;  // 0 = never
 };
 
@@ -143,6 +150,38 @@ std::string tetrahedralize_step(const fs::path& surface, const fs::path& work, c
   return run_step(tetgen, work, "tetrahedralize");
 }
 
+// --mesh-per-domain: each domain maps its own copy of `mesh`; a domain whose map splits boundary edges
+// keeps its refined mesh as work/<name>_<suffix>.mesh (published beside the map, where
+// discover_cases looks first). Returns the first failure ("" when every kept domain verified).
+std::string map_each_domain_on_its_own_mesh(const fs::path& mesh, const fs::path& work, const std::string& name,
+                                            std::vector<std::string>& domains, SurfaceOutcome& outcome,
+                                            const std::function<void(const std::string&, const std::string&)>& drop,
+                                            bool keep_going) {
+  const fs::path tools(tools_dir());
+  outcome.refinement_passes = 1;
+  for (const auto& dom : std::vector<std::string>(domains)) {
+    const std::string suffix = domain_suffix(dom);
+    const fs::path map = work / (name + "_" + suffix + ".txt"), own = work / (name + "_" + suffix + ".mesh");
+    fs::remove(own);
+    std::string e = run_step({(tools / "volmap-surface-map").string(), dom, mesh.string(), map.string(), "--refined", own.string()},
+                             work, "surface-map-" + suffix);
+    const fs::path mapped = fs::exists(own) ? own : mesh;
+    if (e.empty())
+      e = run_step({(tools / "volmap-surface-map-check").string(), mapped.string(), map.string(), "--domain", dom}, work,
+                   "surface-map-check-" + suffix);
+    if (e.empty() && mapped == own)
+      e = run_step({(tools / "volmap-tetmesh-check").string(), own.string()}, work, "tetmesh-check-" + suffix);
+    if (!e.empty()) {
+      if (!keep_going) return e;
+      drop(dom, e);
+      fs::remove(own);
+      continue;
+    }
+    outcome.domain_tets.emplace_back(dom, volmap::read_tet_mesh(mapped.string()).num_tets());
+  }
+  return "";
+}
+
 SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset, const std::string& group,
                                const DatasetOptions& opt) {
   const fs::path tools(tools_dir());
@@ -174,7 +213,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   std::vector<std::string> domains = opt.domains;
   // --keep-going: the mesh the domain failed on (and its map, if one was written) are kept in
   // <dataset>/<group>_failed/ to reproduce the failure; that folder is no benchmark group.
-  auto drop = [&](const std::string& dom, const std::string& reason) {
+  const std::function<void(const std::string&, const std::string&)> drop = [&](const std::string& dom, const std::string& reason) {
     outcome.failed_domains.emplace_back(dom, reason);
     domains.erase(std::find(domains.begin(), domains.end(), dom));
     const fs::path kept = dataset / (group + "_failed");
@@ -184,7 +223,11 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       copy_atomically(map_path(dom), kept / (outcome.name + "_" + domain_suffix(dom) + ".txt"));
     fs::remove(map_path(dom));
   };
-  std::vector<std::string> pending = domains;
+  if (opt.mesh_per_domain) {
+    if (auto e = map_each_domain_on_its_own_mesh(mesh, work, outcome.name, domains, outcome, drop, opt.keep_going); !e.empty())
+      return outcome.reason = e, outcome;
+  }
+  std::vector<std::string> pending = opt.mesh_per_domain ? std::vector<std::string>() : domains;
   constexpr int kMaxPasses = 6;
   for (int pass = 0; pass < kMaxPasses && !pending.empty(); ++pass) {
     outcome.refinement_passes = pass + 1;
@@ -239,6 +282,8 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
     if (suffix == "pc")
       volmap::write_text_atomically((folder / (outcome.name + "_pc_cells.txt")).string(), cells_text(dom));
     copy_atomically(map_path(dom), folder / (outcome.name + "_" + suffix + ".txt"));
+    const fs::path own = work / (outcome.name + "_" + suffix + ".mesh");
+    if (opt.mesh_per_domain && fs::exists(own)) copy_atomically(own, folder / (outcome.name + "_" + suffix + ".mesh"));
   }
   outcome.tets = volmap::read_tet_mesh(mesh.string()).num_tets();
   copy_atomically(mesh, dataset / group / (outcome.name + ".mesh"));  // last: a mesh means a complete case
@@ -282,6 +327,9 @@ int main(int argc, char** argv) {
           "0 or >= 4"));
   app.add_flag("--keep-unrefined", opt.keep_unrefined,
                "also write the mesh before any surface-map split to <group>_unrefined/<name>.mesh");
+  app.add_flag("--mesh-per-domain", opt.mesh_per_domain,
+               "each domain maps its own copy of the mesh: a domain that splits boundary edges publishes its refined "
+               "mesh as <group>_<dom>/<name>_<dom>.mesh (volmap-run uses it); <group>/<name>.mesh stays unsplit");
   app.add_flag("--keep-going", opt.keep_going,
                "a domain whose map fails is dropped (reason in the log and JSON); the other domains are published");
   app.add_flag("--json", json, "print one JSON object");
@@ -354,6 +402,11 @@ int main(int argc, char** argv) {
       list.push_back({{"name", o.name}, {"added", o.ok}, {"reason", o.reason}, {"passes", o.refinement_passes},
                       {"faces", o.faces}, {"decimated_faces", o.decimated_faces}, {"tetgen_tets", o.tetgen_tets},
                       {"tets", o.tets}, {"failed_domains", failed}});
+      if (opt.mesh_per_domain) {
+        nlohmann::json per = nlohmann::json::object();
+        for (const auto& [dom, n] : o.domain_tets) per[domain_suffix(dom)] = n;
+        list.back()["domain_tets"] = per;
+      }
     }
     volmap::write_text_atomically((fs::path(dataset_dir) / (group + "_log.txt")).string(), log.str());
     const int code = added > 0 ? volmap_tools::kExitOk : volmap_tools::kExitCheckFailed;

@@ -8,7 +8,7 @@
 #   <out>  where the sets go, e.g. /work/eval/sets (never inside the repo: the data's licences forbid it)
 #   sets   any of: thin thin_coarse coarse g1sphere tetmeshes maps surfaces (default: all, in that order)
 #   env    VOLMAP_DATA (default /work/shared/data), DECIMATE (default 22000 triangles),
-#          STEP_TIMEOUT (seconds per surface in volmap-dataset, default 3600)
+#          STEP_TIMEOUT (seconds per surface in volmap-dataset, default 3600), MESH_PER_DOMAIN (default 1)
 #
 # The sets (each in <out>/<set>/, with logs/<group>_<name>.json = volmap-dataset's JSON per input):
 #   thin        the 16 thin-feature shapes of `volmap-shapes --thin` (group G1), TetGen p q1.414 Y
@@ -27,8 +27,11 @@
 # Published maps passed `volmap-surface-map-check --domain <dom>` (volmap-dataset's own check). A
 # domain whose map fails is dropped and recorded in the JSON (failed_domains), the mesh it failed on
 # kept as G<k>_failed/<name>_<dom>.mesh, so each set's case count is (inputs x 6) minus the
-# surface-map failures. G<k>_unrefined/<name>.mesh is the mesh before any surface-map split (one
-# mesh serves all six domains, so the published mesh carries the splits of all of them).
+# surface-map failures. Each domain maps its own copy of the TetGen mesh (--mesh-per-domain; the
+# end-to-end pipeline a user runs per case): a domain whose map split boundary edges has its mesh
+# beside the map (G<k>_<dom>/<name>_<dom>.mesh), so a case's growth carries only its own splits
+# (MESH_PER_DOMAIN=0: one mesh for all six domains, VOLMAP's layout, carrying all their splits).
+# G<k>_unrefined/<name>.mesh is the mesh before any surface-map split.
 # Deterministic: same tools, same sets (TetGen, the decimation and the surface maps are).
 set -euo pipefail
 
@@ -41,6 +44,7 @@ SETS=("${@:-${ALL_SETS[@]}}")
 DATA=${VOLMAP_DATA:-/work/shared/data}
 DECIMATE=${DECIMATE:-22000}
 STEP_TIMEOUT=${STEP_TIMEOUT:-3600}
+PER_DOMAIN_FLAG=$([ "${MESH_PER_DOMAIN:-1}" = 0 ] || echo --mesh-per-domain)
 DOMAINS=cube,tet,pyr,octa,star,sphere
 SOURCES=(cgal cinolib common3d gmsh libigl_tutorial nightmare_of_polycubes)  # surfaces: group G1..G6
 
@@ -58,7 +62,7 @@ dataset_one() {
   ln -s "$(realpath "$input")" "$stage/"
   mkdir -p "$set_dir/logs"
   timeout "$STEP_TIMEOUT" "$BIN/volmap-dataset" "$stage" "$set_dir" --group "$group" --domains "$DOMAINS" \
-    --keep-going --keep-unrefined --json "$@" > "$log.tmp" 2> "$set_dir/logs/${group}_$name.err" || rc=$?
+    --keep-going --keep-unrefined $PER_DOMAIN_FLAG --json "$@" > "$log.tmp" 2> "$set_dir/logs/${group}_$name.err" || rc=$?
   if [ "$rc" = 124 ]; then
     echo "{\"ok\":false,\"surfaces\":[{\"name\":\"$name\",\"added\":false,\"reason\":\"volmap-dataset timed out after $STEP_TIMEOUT s\"}]}" > "$log.tmp"
   elif ! [ -s "$log.tmp" ]; then

@@ -2,7 +2,8 @@
 // volmap-surface-map, the maps re-checked by volmap-surface-map-check --domain polycube:<cells>, the
 // volume maps certified by volmap-map and re-certified independently by volmap-map-check; a U of 5
 // cells refused with exit 2 and a one-line reason naming the file and a cell; volmap-dataset
-// publishing sphere and polycube maps (suffix pc) of a generated mesh, re-checked here.
+// publishing sphere and polycube maps (suffix pc) of a generated mesh, re-checked here, and with
+// --mesh-per-domain each domain's own split mesh beside its map, which volmap-run then maps.
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 #include <volmap/io/io.hpp>
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -129,6 +131,49 @@ TEST_CASE("volmap-dataset adds sphere and polycube maps to a group") {
   CHECK(run(tool("volmap-dataset") + " " + quote((d / "in").string()) + " " + quote((d / "ds3").string()) +
             " --group G9 --domains polycube:L3,polycube:cross7")
             .code == 2);
+}
+
+TEST_CASE("volmap-dataset --mesh-per-domain: each domain's splits stay in its own mesh, which volmap-run maps") {
+  if (!fs::exists(volmap_test::tool("volmap-dataset"))) {
+    MESSAGE("skipped: volmap-dataset is not built (needs TetGen)");
+    return;
+  }
+  const fs::path d = volmap_test::scratch_dir("dataset_mesh_per_domain");
+  fs::create_directories(d / "in");
+  const auto cube = volmap::generate_kuhn_unit_cube(6);
+  volmap::write_medit((d / "in" / "cube6.mesh").string(), cube);
+  const fs::path ds = d / "ds";
+  auto r = run(tool("volmap-dataset") + " " + quote((d / "in").string()) + " " + quote(ds.string()) +
+               " --group G9 --domains cube,star,polycube:L3 --mesh-per-domain --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& surface = j["surfaces"][0];
+  // The group mesh is the input itself: no domain's splits in it.
+  CHECK(volmap::read_tet_mesh((ds / "G9" / "cube6.mesh").string()).num_tets() == cube.num_tets());
+  CHECK(surface["tets"] == cube.num_tets());
+  std::size_t own_meshes = 0;
+  for (const std::string dom : {"cube", "star", "pc"}) {
+    CAPTURE(dom);
+    const fs::path own = ds / ("G9_" + dom) / ("cube6_" + dom + ".mesh"), map = ds / ("G9_" + dom) / ("cube6_" + dom + ".txt");
+    const fs::path mesh = fs::exists(own) ? own : ds / "G9" / "cube6.mesh";
+    own_meshes += fs::exists(own);
+    const std::size_t tets = volmap::read_tet_mesh(mesh.string()).num_tets();
+    CHECK(surface["domain_tets"][dom] == tets);
+    CHECK(fs::exists(own) == (tets != cube.num_tets()));  // published only when the map split edges
+    const std::string domain_arg = dom == "pc" ? "polycube:" + quote((ds / "G9_pc" / "cube6_pc_cells.txt").string()) : dom;
+    CHECK(run(tool("volmap-surface-map-check") + " " + quote(mesh.string()) + " " + quote(map.string()) + " --domain " + domain_arg)
+              .code == 0);
+    // volmap-run takes the case's own mesh (the input tets it reports are that mesh's).
+    const fs::path out = d / ("run_" + dom);
+    REQUIRE(run(tool("volmap-run") + " " + quote(ds.string()) + " --method tutte3d --domains " + dom + " --out " + quote(out.string()) +
+                " > /dev/null 2>&1")
+                .code <= 1);
+    std::ifstream results(out / "results.jsonl");
+    std::string line;
+    REQUIRE(std::getline(results, line));
+    CHECK(nlohmann::json::parse(line)["tets_in"] == tets);
+  }
+  CHECK(own_meshes >= 1);  // the L3 polycube and the star need boundary splits on this grid
 }
 
 TEST_CASE("volmap-polycube-cells: a generated L-shaped mesh gives its 12 cells, mapped by volmap-surface-map") {

@@ -59,7 +59,9 @@ std::vector<BenchmarkCase> discover_cases(const std::string& root, const std::ve
         if (!domains.empty() && !contains(domains, dom)) continue;
         const fs::path map = fs::path(root) / (group + "_" + dom) / (mesh + "_" + dom + ".txt");
         if (!fs::is_regular_file(map, ec)) continue;
-        cases.push_back({group, mesh, dom, (fs::path(root) / group / (mesh + ".mesh")).string(), map.string()});
+        const fs::path own = fs::path(root) / (group + "_" + dom) / (mesh + "_" + dom + ".mesh");
+        const fs::path shared = fs::path(root) / group / (mesh + ".mesh");
+        cases.push_back({group, mesh, dom, (fs::is_regular_file(own, ec) ? own : shared).string(), map.string()});
       }
   }
   return cases;

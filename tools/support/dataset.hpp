@@ -2,6 +2,8 @@
 //   <root>/G<k>/<name>.mesh  with  <root>/G<k>_<dom>/<name>_<dom>.txt
 // for dom in cube, tet, pyr, octa, star, sphere, pc (the benchmark's suffixes). Discovery is
 // deterministic: groups by number, meshes by name, domains in the suffix order above.
+// Extension (volmap-dataset --mesh-per-domain): a mesh <root>/G<k>_<dom>/<name>_<dom>.mesh beside the
+// map is that case's mesh instead of <root>/G<k>/<name>.mesh.
 #pragma once
 
 #include <string>
