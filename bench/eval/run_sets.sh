@@ -41,7 +41,8 @@ sphere_checks() {  # <set dir> <results dir>
     [ -f "$map" ] || continue
     group=$(basename "$(dirname "$map")"); group=${group%_sphere}
     name=$(basename "$map" _sphere.txt)
-    mesh=$1/$group/$name.mesh
+    mesh=$1/${group}_sphere/${name}_sphere.mesh  # its own mesh (make_sets.sh --mesh-per-domain)
+    [ -f "$mesh" ] || mesh=$1/$group/$name.mesh
     [ -f "$mesh" ] || continue
     plain=$("$BIN/volmap-surface-map-check" "$mesh" "$map" --json 2>/dev/null || true)
     domain=$("$BIN/volmap-surface-map-check" "$mesh" "$map" --domain sphere --json 2>/dev/null || true)
