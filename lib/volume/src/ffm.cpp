@@ -13,6 +13,7 @@
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 
+#include "local_region.hpp"
 #include "untangle_support.hpp"
 
 #include <LBFGS.h>
@@ -593,11 +594,10 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
                                        const LocalUntangleOptions& options) {
   const TimeBudget budget(options.time_limit_seconds);
   LocalUntangleResult result;
-  const std::size_t nv = source.num_vertex_slots(), nt = source.num_tet_slots();
+  const std::size_t nv = source.num_vertex_slots();
   if (source.num_free_tet_slots() != 0 || source.num_vertices() != nv)
     throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: the mesh has tombstones (compact it first)");
   if (target_xyz.size() != 3 * nv || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "ffm_local_untangle: inconsistent array sizes");
-  const std::vector<double>& source_xyz = source.positions();
   const std::vector<std::uint32_t>& tets = source.tet_vertex_array();
   std::vector<std::uint32_t> bad = nonpositive_tets(target_xyz, tets);
   result.nonpositive_before = result.nonpositive_after = bad.size();
@@ -605,67 +605,15 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
   int rings = options.rings;
   bool other_reference_tried = false;
   ReferenceShape reference = options.reference;
-  std::vector<std::uint8_t> in_region(nv), tet_in(nt);
-  std::vector<std::uint32_t> frontier, next, local_id(nv, std::uint32_t(-1));
   for (int round = 0; round < options.max_rounds && !bad.empty(); ++round) {
     if (budget.expired()) break;
     result.rounds = round + 1;
-    std::fill(in_region.begin(), in_region.end(), 0);
-    frontier.clear();
-    for (std::uint32_t t : bad)
-      for (int k = 0; k < 4; ++k) {
-        const std::uint32_t v = tets[4 * std::size_t(t) + k];
-        if (!in_region[v]) {
-          in_region[v] = 1;
-          frontier.push_back(v);
-        }
-      }
-    for (int r = 0; r < rings; ++r) {
-      next.clear();
-      for (std::uint32_t v : frontier)
-        for (TetId t : source.vertex_tets(VertexId(v)))
-          for (int j = 0; j < 4; ++j) {
-            const std::uint32_t u = source.tet_vertex(t, j).idx();
-            if (!in_region[u]) {
-              in_region[u] = 1;
-              next.push_back(u);
-            }
-          }
-      frontier.swap(next);
-    }
-    // Sub-problem: tets touching a free region vertex; their vertices renumbered.
-    std::fill(tet_in.begin(), tet_in.end(), 0);
-    std::vector<std::uint32_t> sub_tets, sub_vertices;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (in_region[v] && !locked[v])
-        for (TetId t : source.vertex_tets(VertexId(std::uint32_t(v)))) tet_in[t.idx()] = 1;
-    for (std::size_t t = 0; t < nt; ++t) {
-      if (!tet_in[t]) continue;
-      for (int k = 0; k < 4; ++k) {
-        const std::uint32_t v = tets[4 * t + k];
-        if (local_id[v] == std::uint32_t(-1)) {
-          local_id[v] = std::uint32_t(sub_vertices.size());
-          sub_vertices.push_back(v);
-        }
-        sub_tets.push_back(local_id[v]);
-      }
-    }
-    std::vector<double> sub_source(3 * sub_vertices.size()), sub_target(3 * sub_vertices.size());
-    std::vector<std::uint8_t> sub_locked(sub_vertices.size());
-    for (std::size_t i = 0; i < sub_vertices.size(); ++i) {
-      const std::uint32_t v = sub_vertices[i];
-      for (int c = 0; c < 3; ++c) {
-        sub_source[3 * i + c] = source_xyz[3 * std::size_t(v) + c];
-        sub_target[3 * i + c] = target_xyz[3 * std::size_t(v) + c];
-      }
-      sub_locked[i] = !(in_region[v] && !locked[v]);
-      local_id[v] = std::uint32_t(-1);
-    }
-    result.largest_region_tets = std::max(result.largest_region_tets, sub_tets.size() / 4);
-    const std::size_t sub_before = count_nonpositive(sub_target, sub_tets);
+    LocalRegion region = extract_local_region(source, locked, target_xyz, bad, rings);
+    result.largest_region_tets = std::max(result.largest_region_tets, region.num_tets());
+    const std::size_t sub_before = count_nonpositive(region.target, region.tets);
     std::size_t sub_after = sub_before;
-    std::vector<double> trial = sub_target;
-    if (!sub_tets.empty()) {
+    std::vector<double> trial = region.target;
+    if (region.num_tets() > 0) {
       FfmOptions fo;
       fo.reference = reference;
       fo.solver = FfmSolver::Newton;
@@ -673,16 +621,15 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
       fo.initial_epsilon = 0;  // warm start: the map is nearly valid
       fo.time_limit_seconds = budget.option_seconds();
       try {
-        ffm_untangle(sub_source, sub_tets, sub_locked, trial, fo);
-        sub_after = count_nonpositive(trial, sub_tets);
+        ffm_untangle(region.source, region.tets, region.locked, trial, fo);
+        sub_after = count_nonpositive(trial, region.tets);
       } catch (const Error&) {
         sub_after = sub_before;  // e.g. the region's boundary encloses a non-positive volume: grow it
       }
     }
     if (sub_after < sub_before) {
-      for (std::size_t i = 0; i < sub_vertices.size(); ++i)
-        if (!sub_locked[i])
-          for (int c = 0; c < 3; ++c) target_xyz[3 * std::size_t(sub_vertices[i]) + c] = trial[3 * i + c];
+      region.target.swap(trial);
+      region.write_back(target_xyz);
       other_reference_tried = false;
       reference = options.reference;
     } else if (!other_reference_tried) {
