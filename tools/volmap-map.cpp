@@ -42,7 +42,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
   std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
-  double max_growth = 0.05, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
+  double max_growth = 0.05, max_growth_cap = volmap::VolumeMapOptions{}.max_growth_last_resort, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
   app.add_option("--refined-input", refined_path, "where to write the refined source (.mesh/.vtk/.vtu/.msh); refinement (chord splits, cone repair) is enabled only with this path");
   app.add_option("--rationals", rationals_path, "also write the output coordinates as exact rationals (VOLMAP num/den)");
   app.add_option("--max-growth", max_growth, "tet growth budget of the cone repair (fraction of input tets)")
+      ->check(finite_non_negative());
+  app.add_option("--max-growth-last-resort", max_growth_cap,
+                 "when patches within --max-growth cannot repair the last bad tets, the budget grows up to this fraction (default 0.5; = --max-growth: never)")
       ->check(finite_non_negative());
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
@@ -114,6 +117,7 @@ int main(int argc, char** argv) {
     opt.method = method == "tlc" ? volmap::MapMethod::Tlc : volmap::MapMethod::Ffm;
     opt.allow_refinement = !no_refine && refined_out;
     opt.max_growth = max_growth;
+    opt.max_growth_last_resort = max_growth_cap;
     opt.time_limit_seconds = time_limit;
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
@@ -180,6 +184,7 @@ int main(int argc, char** argv) {
                        {"chord_edges_removed", r.chord_edges_removed},
                        {"chord_faces_flipped", r.chord_faces_flipped},
                        {"chord_cone_patches", r.chord_cone_patches},
+                       {"growth_budget_escalations", r.growth_budget_escalations},
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};

@@ -315,7 +315,7 @@ std::vector<Invocation> invocations(const Inputs& g) {
        {{"input", Kind::Mesh, true, g.mesh}, {"map", Kind::Map, true, g.map}, {"output", Kind::OutMesh, true, "m.mesh"},
         {"--refined-input", Kind::OutMesh, false, "r.mesh"}, {"--rationals", Kind::OutFile, false, "m.rat"}},
        {},
-       {"--max-growth", "--time-limit", "--threads", "--tlc-share", "--ffm-inner"}},
+       {"--max-growth", "--max-growth-last-resort", "--time-limit", "--threads", "--tlc-share", "--ffm-inner"}},
       {"volmap-map (--initial)", "volmap-map", {},
        {{"input", Kind::Mesh, true, g.mesh}, {"map", Kind::Map, true, "-"}, {"output", Kind::OutMesh, true, "m.vtk"},
         {"--initial", Kind::Mapped, false, g.init}},

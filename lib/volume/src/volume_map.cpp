@@ -30,6 +30,7 @@ class VolumeMapper {
     cascade_budget_ = b1_rounds_ ? total_.first_part(options.refine_time_share) : total_;
     budget_ = &cascade_budget_;
     growth_budget_ = std::size_t(options.max_growth * double(state_.input_tets));
+    growth_cap_ = std::max(growth_budget_, std::size_t(options.max_growth_last_resort * double(state_.input_tets)));
   }
 
   VolumeMapResult run() {
@@ -61,7 +62,8 @@ class VolumeMapper {
   TimeBudget cascade_budget_;
   const TimeBudget* budget_ = nullptr;  // the current phase's budget
   bool b1_rounds_ = false;
-  std::size_t growth_budget_ = 0;
+  std::size_t growth_budget_ = 0;  // tets B0 + B1 may add (grown by escalate_growth_budget)
+  std::size_t growth_cap_ = 0;
   std::size_t bad_ = 0;  // exact non-positive count of the state kept
   std::size_t early_b1_stalled_at_ = std::size_t(-1);  // bad count of the last early B1 that patched nothing
   bool input_has_tet_labels_, input_has_vertex_labels_;  // label arrays stay empty when the input's were
@@ -176,6 +178,17 @@ class VolumeMapper {
     return cr;
   }
 
+  // After a B1 round that refused patches only for the budget (see max_growth_last_resort): a larger
+  // budget; false when it is at the cap already.
+  bool escalate_growth_budget(const ConeRepairResult& cr) {
+    if (cr.failures.budget == 0 || bad_ == 0 || growth_budget_ >= growth_cap_) return false;
+    const long long used = std::max(0LL, (long long)state_.source.num_tets() - (long long)state_.input_tets);
+    const std::size_t wanted = std::max(2 * growth_budget_, std::size_t(used) + std::max<std::size_t>(16, growth_budget_));
+    growth_budget_ = std::min(growth_cap_, wanted);
+    ++result_.growth_budget_escalations;
+    return true;
+  }
+
   // Early B1: as soon as a stage leaves few non-positive tets, the cone repair is tried (it leaves a
   // cluster untouched when it fails); not again at an unchanged count after an attempt that stalled.
   void try_early_b1(const std::string& after) {
@@ -244,6 +257,10 @@ class VolumeMapper {
     for (int round = 0; round < 8 && bad_ > 0 && !budget_->expired(); ++round) {
       const std::size_t bad_before = bad_;
       const ConeRepairResult cr = cone_repair_stage("cone-repair");
+      if (escalate_growth_budget(cr)) {  // the same round again with the larger budget (bounded: the cap)
+        --round;
+        continue;
+      }
       link_kernel();
       if (bad_ == 0 || budget_->expired()) break;
       const std::size_t bad_local = bad_;

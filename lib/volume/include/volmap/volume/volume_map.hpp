@@ -34,7 +34,11 @@ enum class MapMethod { Ffm, Tlc };
 struct VolumeMapOptions {
   MapMethod method = MapMethod::Ffm;
   bool allow_refinement = true;
-  double max_growth = 0.05;        // tets added by B0 + B1 / input tets
+  double max_growth = 0.05;        // tets added by B0 + B1 / input tets: the budget B1 patches aim for
+  // The budget is a target, not a wall: when B1 refuses patches only because they exceed it and
+  // non-positive tets remain, the budget grows (doubling, at least 16 tets above what is used) up to
+  // this fraction of the input tets. A certified map that grew beats an uncertified one.
+  double max_growth_last_resort = 0.5;
   double time_limit_seconds = 0;   // 0 = none (soft: checked between and inside stages)
   bool quality_pass = true;
   int quality_iterations = 300;
@@ -94,6 +98,7 @@ struct VolumeMapResult {
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::size_t chord_edges_removed = 0, chord_faces_flipped = 0;  // B0 flips (no new vertex)
   std::size_t chord_cone_patches = 0;                              // B0 cone patches (one new vertex each)
+  std::size_t growth_budget_escalations = 0;                       // times B1's budget grew (max_growth_last_resort)
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
