@@ -178,8 +178,8 @@ class VolumeMapper {
     return cr;
   }
 
-  // After a B1 round that refused patches only for the budget (see max_growth_last_resort): a larger
-  // budget; false when it is at the cap already.
+  // After a B1 round that refused a patch for the budget while bad tets remain (see
+  // max_growth_last_resort): a larger budget; false when it is at the cap already.
   bool escalate_growth_budget(const ConeRepairResult& cr) {
     if (cr.failures.budget == 0 || bad_ == 0 || growth_budget_ >= growth_cap_) return false;
     const long long used = std::max(0LL, (long long)state_.source.num_tets() - (long long)state_.input_tets);

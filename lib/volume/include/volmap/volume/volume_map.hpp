@@ -35,9 +35,10 @@ struct VolumeMapOptions {
   MapMethod method = MapMethod::Ffm;
   bool allow_refinement = true;
   double max_growth = 0.05;        // tets added by B0 + B1 / input tets: the budget B1 patches aim for
-  // The budget is a target, not a wall: when B1 refuses patches only because they exceed it and
-  // non-positive tets remain, the budget grows (doubling, at least 16 tets above what is used) up to
-  // this fraction of the input tets. A certified map that grew beats an uncertified one.
+  // The budget is a target, not a wall: when a B1 round of the repair phase refuses a patch because
+  // it exceeds the budget and non-positive tets remain, the budget grows (doubling, at least 16 tets
+  // above what is used) up to this fraction of the input tets, and the round is repeated. A
+  // certified map that grew beats an uncertified one.
   double max_growth_last_resort = 0.5;
   double time_limit_seconds = 0;   // 0 = none (soft: checked between and inside stages)
   bool quality_pass = true;
