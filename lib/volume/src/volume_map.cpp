@@ -1,8 +1,9 @@
 // volume_map.cpp — the volmap-map pipeline (docs/mapping.md §8; conventions in volume_map.hpp): the
 // schedule of the stages over one MapState. Every stage is judged by one StageJudge (a stage that
-// makes the exact count worse is undone) and draws its time from one TimeBudget: with refinement and
-// a time limit, the untangling cascade may use the first refine_time_share of it and the B1 rounds
-// the rest. Section marks (§N) refer to docs/mapping.md.
+// makes the exact count worse is undone) and draws its time from one TimeBudget: the schedule is
+// planned over min(time limit, planning horizon); with refinement the untangling cascade may use the
+// first refine_time_share of that plan and the B1 rounds the rest; time beyond the plan goes to
+// further judged rounds only. Section marks (§N) refer to docs/mapping.md.
 #include <volmap/volume/volume_map.hpp>
 
 #include <volmap/check/map_check.hpp>
@@ -27,7 +28,11 @@ class VolumeMapper {
       : options_(options), map_(map), total_(options.time_limit_seconds), state_(input, map, options.initial_xyz), judge_(state_),
         input_has_tet_labels_(!input.tet_labels.empty()), input_has_vertex_labels_(!input.vertex_labels.empty()) {
     b1_rounds_ = options.allow_refinement && options.method == MapMethod::Ffm;
-    cascade_budget_ = b1_rounds_ ? total_.first_part(options.refine_time_share) : total_;
+    // MapMethod::Tlc is one stage: it plans nothing and gets the whole limit.
+    const double horizon = options.method == MapMethod::Ffm ? options.planning_horizon_seconds : 0;
+    plan_ = total_.limited() && horizon > 0 && total_.limit_seconds() > horizon ? total_.first_part(horizon / total_.limit_seconds())
+                                                                                 : total_;
+    cascade_budget_ = b1_rounds_ ? plan_.first_part(options.refine_time_share) : plan_;
     budget_ = &cascade_budget_;
     growth_budget_ = std::size_t(options.max_growth * double(state_.input_tets));
     growth_cap_ = std::max(growth_budget_, std::size_t(options.max_growth_last_resort * double(state_.input_tets)));
@@ -47,7 +52,8 @@ class VolumeMapper {
     if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
     if (bad_ > 0 && options_.method == MapMethod::Ffm && !few_left_for_b1()) global_ffm();
-    if (bad_ > 0 && b1_rounds_) repair_rounds();
+    if (bad_ > 0 && b1_rounds_) repair_rounds(plan_);
+    if (bad_ > 0) use_time_beyond_plan();
     if (bad_ == 0 && options_.quality_pass && options_.method == MapMethod::Ffm && !budget_->expired()) quality();
     return finish(true);
   }
@@ -59,7 +65,8 @@ class VolumeMapper {
   MapState state_;
   StageJudge judge_;
   VolumeMapResult result_;
-  TimeBudget cascade_budget_;
+  TimeBudget plan_;            // the first min(limit, planning horizon) seconds: the planned schedule
+  TimeBudget cascade_budget_;  // the untangling cascade's part of plan_
   const TimeBudget* budget_ = nullptr;  // the current phase's budget
   bool b1_rounds_ = false;
   std::size_t growth_budget_ = 0;  // tets B0 + B1 may add (grown by escalate_growth_budget)
@@ -251,8 +258,8 @@ class VolumeMapper {
   // (the rest of the map is valid and stays frozen) → repair again. When the repair and the local
   // solve both stall: one small-lift TLC over the whole mesh (its moves at an equal count change the
   // state the repair sees), then one global FFM; then stop.
-  void repair_rounds() {
-    budget_ = &total_;
+  void repair_rounds(const TimeBudget& budget) {
+    budget_ = &budget;
     bool global_tried = false, tlc_retried = false;
     for (int round = 0; round < 8 && bad_ > 0 && !budget_->expired(); ++round) {
       const std::size_t bad_before = bad_;
@@ -279,6 +286,19 @@ class VolumeMapper {
       fo.stall_outer_iterations = 40;
       fo.time_limit_seconds = budget_->option_seconds(0.5);
       global_ffm_stage("ffm-after-repair", fo);
+    }
+  }
+
+  // A limit beyond the planning horizon changes none of the planned stages; what is left after them
+  // goes to more judged rounds of the last phase (B1 rounds, or the global FFM stages without B1),
+  // so more time never ends with more non-positive tets.
+  void use_time_beyond_plan() {
+    if (!total_.limited() || plan_.limit_seconds() >= total_.limit_seconds() || total_.expired()) return;
+    if (b1_rounds_) {
+      repair_rounds(total_);
+    } else if (cascade()) {
+      budget_ = &total_;
+      global_ffm();
     }
   }
 

@@ -41,6 +41,10 @@ struct VolumeMapOptions {
   // certified map that grew beats an uncertified one.
   double max_growth_last_resort = 0.5;
   double time_limit_seconds = 0;   // 0 = none (soft: checked between and inside stages)
+  // Cascade: the stages' time shares are taken from min(time_limit_seconds, this) (0 = the whole limit). A
+  // longer limit leaves the planned stages as they are and gives the extra time to further judged
+  // rounds of the last phase: more time never ends with more non-positive tets.
+  double planning_horizon_seconds = 60;
   bool quality_pass = true;
   int quality_iterations = 300;
   // The quality pass may use at most max(quality_min_seconds, quality_time_ratio × the time spent
