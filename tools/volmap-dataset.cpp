@@ -155,7 +155,7 @@ std::string tetrahedralize_step(const fs::path& surface, const fs::path& work, c
 // discover_cases looks first). Returns the first failure ("" when every kept domain verified).
 std::string map_each_domain_on_its_own_mesh(const fs::path& mesh, const fs::path& work, const std::string& name,
                                             std::vector<std::string>& domains, SurfaceOutcome& outcome,
-                                            const std::function<void(const std::string&, const std::string&)>& drop,
+                                            const std::function<void(const std::string&, const std::string&, const fs::path&)>& drop,
                                             bool keep_going) {
   const fs::path tools(tools_dir());
   outcome.refinement_passes = 1;
@@ -173,7 +173,7 @@ std::string map_each_domain_on_its_own_mesh(const fs::path& mesh, const fs::path
       e = run_step({(tools / "volmap-tetmesh-check").string(), own.string()}, work, "tetmesh-check-" + suffix);
     if (!e.empty()) {
       if (!keep_going) return e;
-      drop(dom, e);
+      drop(dom, e, mapped);  // keeps the mesh it failed on: its own when the map split edges
       fs::remove(own);
       continue;
     }
@@ -213,12 +213,14 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
   std::vector<std::string> domains = opt.domains;
   // --keep-going: the mesh the domain failed on (and its map, if one was written) are kept in
   // <dataset>/<group>_failed/ to reproduce the failure; that folder is no benchmark group.
-  const std::function<void(const std::string&, const std::string&)> drop = [&](const std::string& dom, const std::string& reason) {
+  // `failed_on`: the mesh the domain was mapped on ("" = the shared mesh).
+  const std::function<void(const std::string&, const std::string&, const fs::path&)> drop =
+      [&](const std::string& dom, const std::string& reason, const fs::path& failed_on) {
     outcome.failed_domains.emplace_back(dom, reason);
     domains.erase(std::find(domains.begin(), domains.end(), dom));
     const fs::path kept = dataset / (group + "_failed");
     fs::create_directories(kept);
-    copy_atomically(mesh, kept / (outcome.name + "_" + domain_suffix(dom) + ".mesh"));
+    copy_atomically(failed_on.empty() ? mesh : failed_on, kept / (outcome.name + "_" + domain_suffix(dom) + ".mesh"));
     if (fs::exists(map_path(dom)))
       copy_atomically(map_path(dom), kept / (outcome.name + "_" + domain_suffix(dom) + ".txt"));
     fs::remove(map_path(dom));
@@ -240,7 +242,7 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
                             work, "surface-map-" + domain_suffix(dom));
           !e.empty()) {
         if (!opt.keep_going) return outcome.reason = e, outcome;
-        drop(dom, e);
+        drop(dom, e, {});
         continue;
       }
       if (!fs::exists(refined)) continue;
@@ -266,7 +268,8 @@ SurfaceOutcome process_surface(const fs::path& surface, const fs::path& dataset,
       drop(dom, "map did not verify after " + std::to_string(kMaxPasses) + " passes: " +
                     run_step({(tools / "volmap-surface-map-check").string(), mesh.string(), map_path(dom).string(),
                               "--domain", dom},
-                             work, "surface-map-check-" + domain_suffix(dom)));
+                             work, "surface-map-check-" + domain_suffix(dom)),
+           {});
   else if (!pending.empty())
     return outcome.reason = "maps did not verify after " + std::to_string(kMaxPasses) + " passes", outcome;
   if (domains.empty()) return outcome.reason = "no domain could be mapped", outcome;
