@@ -28,6 +28,7 @@
 // volmap/volume/infeasibility.hpp (kind, simplex, constraint tets, multipliers); exit 1 then.
 // Exit: 0 certified; 1 ran but not injective (the outputs are STILL written with the best map found,
 // so it can be inspected; it must not be used as a valid map); 2 usage or bad input.
+#include "support/allocation_policy.hpp"
 #include "support/input_mesh.hpp"
 #include "support/tool_common.hpp"
 
@@ -40,6 +41,7 @@
 #include <cstdio>
 
 int main(int argc, char** argv) {
+  volmap_tools::reuse_freed_memory();
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
   std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
   double max_growth = 0.05, max_growth_cap = volmap::VolumeMapOptions{}.max_growth_last_resort, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
