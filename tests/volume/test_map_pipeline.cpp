@@ -3,6 +3,8 @@
 // cube, Floater–Pham-Trong 7-vertex Tutte counterexample), TLC, and the no-false-success property
 // of the tool (a fixed inverted all-boundary tet with refinement disabled must give exit 1).
 #include <doctest/doctest.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/volume/chord_split.hpp>
@@ -170,6 +172,33 @@ TEST_CASE("TLC untangles scrambled interior vertices (exact stop)") {
   auto r = volmap::tlc_untangle(m.xyz, m.tets, bnd, target);
   CHECK(r.certified);
   CHECK(volmap::count_nonpositive(target, m.tets) == 0);
+}
+
+TEST_CASE("TLC: the in-order evaluation (one thread) and the parallel one give the same bits") {
+  // One thread scatters each tet's gradient into its vertices in tet order; several threads
+  // gather per vertex in the same order. Same sums, same order: the runs must agree exactly.
+  auto m = map_test::kuhn_grid(5);
+  auto bnd = map_test::grid_boundary_flags(5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  auto scrambled = m.xyz;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    if (!bnd[v])
+      for (int i = 0; i < 3; ++i) scrambled[3 * v + i] += u(rng);
+  REQUIRE(volmap::count_nonpositive(scrambled, m.tets) > 0);
+  volmap::TlcOptions o;
+  o.max_evaluations = 40;  // stop mid-way: the trajectories, not only the end, must agree
+  auto one = scrambled, many = scrambled;
+  volmap::TlcResult r1, r2;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    r1 = volmap::tlc_untangle(m.xyz, m.tets, bnd, one, o);
+  }
+  tbb::task_arena(2).execute([&] { r2 = volmap::tlc_untangle(m.xyz, m.tets, bnd, many, o); });
+  CHECK(r1.evaluations == r2.evaluations);
+  CHECK(r1.nonpositive == r2.nonpositive);
+  CHECK(one == many);
+  CHECK(one != scrambled);
 }
 
 TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, the mapper certifies") {

@@ -25,43 +25,114 @@ using untangle::det3;
 using untangle::edge_matrix;
 using untangle::signed_volume_sum;
 
-// Per-tet data of the TLC energy in the scaled frame.
+constexpr double kSixth = 1.0 / 6.0;  // a multiply: the energy is a heuristic, not a sign
+
+// A = √det G / 6 with G = TᵀT + a·G_rest (symmetric: six entries), ∂A/∂T = A·T·G⁻¹ = (A/det G)·T·C
+// with C the (symmetric) cofactor matrix of G. dT = 0 where det G ≤ 0 (only at a = 0).
+inline double lifted_content(const double* T, const double* R, double* dT) {
+  const double g00 = T[0] * T[0] + T[3] * T[3] + T[6] * T[6] + R[0];
+  const double g01 = T[0] * T[1] + T[3] * T[4] + T[6] * T[7] + R[1];
+  const double g02 = T[0] * T[2] + T[3] * T[5] + T[6] * T[8] + R[2];
+  const double g11 = T[1] * T[1] + T[4] * T[4] + T[7] * T[7] + R[4];
+  const double g12 = T[1] * T[2] + T[4] * T[5] + T[7] * T[8] + R[5];
+  const double g22 = T[2] * T[2] + T[5] * T[5] + T[8] * T[8] + R[8];
+  const double c00 = g11 * g22 - g12 * g12, c01 = g12 * g02 - g01 * g22, c02 = g01 * g12 - g11 * g02;
+  const double det = g00 * c00 + g01 * c01 + g02 * c02;
+  const double A = std::sqrt(std::max(det, 0.0)) * kSixth;
+  if (dT) {
+    if (!(det > 0)) {
+      std::fill(dT, dT + 9, 0.0);
+      return A;
+    }
+    const double c11 = g00 * g22 - g02 * g02, c12 = g01 * g02 - g00 * g12, c22 = g00 * g11 - g01 * g01;
+    const double s = A / det;
+    for (int i = 0; i < 3; ++i) {
+      const double t0 = T[3 * i], t1 = T[3 * i + 1], t2 = T[3 * i + 2];
+      dT[3 * i] = s * (t0 * c00 + t1 * c01 + t2 * c02);
+      dT[3 * i + 1] = s * (t0 * c01 + t1 * c11 + t2 * c12);
+      dT[3 * i + 2] = s * (t0 * c02 + t1 * c12 + t2 * c22);
+    }
+  }
+  return A;
+}
+
+// Energy term of one tet (lifted content + det T/6, a constant shift for a fixed boundary) and its
+// ∂/∂T; *nonpositive is set when the double edge determinant is not negative (not VOLMAP-positive).
+inline double tet_term(const double* x, const std::uint32_t* tet, const double* rest_gram, double* grad12, bool* nonpositive) {
+  double T[9], dT[9];
+  edge_matrix(x, tet, T);
+  const double d = det3(T);
+  *nonpositive = !(d < 0);
+  const double e = lifted_content(T, rest_gram, dT) + d * kSixth;
+  // + ∂(det T/6)/∂T via the cofactors of T.
+  dT[0] += (T[4] * T[8] - T[5] * T[7]) * kSixth;
+  dT[1] += (T[5] * T[6] - T[3] * T[8]) * kSixth;
+  dT[2] += (T[3] * T[7] - T[4] * T[6]) * kSixth;
+  dT[3] += (T[2] * T[7] - T[1] * T[8]) * kSixth;
+  dT[4] += (T[0] * T[8] - T[2] * T[6]) * kSixth;
+  dT[5] += (T[1] * T[6] - T[0] * T[7]) * kSixth;
+  dT[6] += (T[1] * T[5] - T[2] * T[4]) * kSixth;
+  dT[7] += (T[2] * T[3] - T[0] * T[5]) * kSixth;
+  dT[8] += (T[0] * T[4] - T[1] * T[3]) * kSixth;
+  untangle::edge_gradient_to_vertices(dT, grad12);
+  return e;
+}
+
+// Per-tet data of the TLC energy in the scaled frame. The Tutte form's rest Gram is one matrix for
+// every tet (rest_stride 0); the rest-shape form stores one per tet (rest_stride 9).
 struct TlcProblem {
   std::size_t nt = 0;
   const std::vector<std::uint32_t>& tets;
   untangle::FreeVertexLayout layout;
   untangle::BoxFrame frame;
-  std::vector<double> rest_gram;  // 9 per tet (already multiplied by a)
+  std::vector<double> rest_gram;  // already multiplied by a
+  std::size_t rest_stride = 9;
   std::vector<double> x;          // scaled full coordinates
-  std::vector<double> tet_grad;   // 12 per tet
+  std::vector<double> tet_grad;   // 12 per tet (parallel evaluation only)
   std::vector<double> tet_energy;
 
   explicit TlcProblem(const std::vector<std::uint32_t>& t) : tets(t) {}
 
-  // Lifted content minus signed content (a constant shift for a fixed boundary); returns in *bad the
-  // number of tets whose double edge determinant is not negative (not VOLMAP-positive).
+  // Lifted content minus signed content; returns in *bad the number of tets whose double edge
+  // determinant is not negative. One thread: tets in order, gradients added straight into the
+  // free vertices' entries. Several: per-tet terms in parallel, then each vertex gathers its tets
+  // in the same ascending order — the same sums in the same order, so both give identical bits.
   double evaluate(const double* vars, double* grad, std::size_t* bad) {
     layout.load(vars, x.data());
+    if (untangle::single_thread()) return evaluate_in_order(grad, bad);
+    return evaluate_in_parallel(grad, bad);
+  }
+
+  double evaluate_in_order(double* grad, std::size_t* bad) {
+    if (grad) std::fill(grad, grad + layout.num_variables(), 0.0);
+    double e = 0, g[12];
+    std::size_t nonpositive = 0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::uint32_t* tet = &tets[4 * t];
+      bool np = false;
+      e += tet_term(x.data(), tet, &rest_gram[rest_stride * t], g, &np);
+      nonpositive += np;
+      if (!grad) continue;
+      for (int j = 0; j < 4; ++j) {
+        const std::int64_t b = layout.free_index[tet[j]];
+        if (b < 0) continue;
+        for (int i = 0; i < 3; ++i) grad[3 * b + i] += g[3 * j + i];
+      }
+    }
+    *bad = nonpositive;
+    return e;
+  }
+
+  double evaluate_in_parallel(double* grad, std::size_t* bad) {
+    tet_grad.resize(12 * nt);
+    tet_energy.resize(nt);
     std::atomic<std::size_t> nonpositive{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-      double T[9], dT[9];
       std::size_t local_bad = 0;
       for (std::size_t t = r.begin(); t < r.end(); ++t) {
-        edge_matrix(x.data(), &tets[4 * t], T);
-        const double d = det3(T);
-        if (!(d < 0)) ++local_bad;
-        tet_energy[t] = tlc_lifted_content(T, &rest_gram[9 * t], dT) + d / 6.0;
-        // + ∂(det T/6)/∂T via the cofactors of T.
-        dT[0] += (T[4] * T[8] - T[5] * T[7]) / 6.0;
-        dT[1] += (T[5] * T[6] - T[3] * T[8]) / 6.0;
-        dT[2] += (T[3] * T[7] - T[4] * T[6]) / 6.0;
-        dT[3] += (T[2] * T[7] - T[1] * T[8]) / 6.0;
-        dT[4] += (T[0] * T[8] - T[2] * T[6]) / 6.0;
-        dT[5] += (T[1] * T[6] - T[0] * T[7]) / 6.0;
-        dT[6] += (T[1] * T[5] - T[2] * T[4]) / 6.0;
-        dT[7] += (T[2] * T[3] - T[0] * T[5]) / 6.0;
-        dT[8] += (T[0] * T[4] - T[1] * T[3]) / 6.0;
-        untangle::edge_gradient_to_vertices(dT, &tet_grad[12 * t]);
+        bool np = false;
+        tet_energy[t] = tet_term(x.data(), &tets[4 * t], &rest_gram[rest_stride * t], &tet_grad[12 * t], &np);
+        local_bad += np;
       }
       if (local_bad > 0) nonpositive.fetch_add(local_bad, std::memory_order_relaxed);
     });
@@ -75,35 +146,7 @@ struct TlcProblem {
 
 }  // namespace
 
-double tlc_lifted_content(const double* T, const double* a_rest_gram, double* dT) {
-  // G = TᵀT + a·G_rest; A = √det G / 6; ∂A/∂T = A·T·G⁻¹.
-  double G[9];
-  for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) G[3 * k + l] = T[k] * T[l] + T[3 + k] * T[3 + l] + T[6 + k] * T[6 + l] + a_rest_gram[3 * k + l];
-  const double c00 = G[4] * G[8] - G[5] * G[7], c01 = G[5] * G[6] - G[3] * G[8], c02 = G[3] * G[7] - G[4] * G[6];
-  const double det = G[0] * c00 + G[1] * c01 + G[2] * c02;
-  const double A = std::sqrt(std::max(det, 0.0)) / 6.0;
-  if (dT) {
-    if (!(det > 0)) {
-      std::fill(dT, dT + 9, 0.0);
-      return A;
-    }
-    double Gi[9];
-    const double id = 1.0 / det;
-    Gi[0] = c00 * id;
-    Gi[1] = (G[2] * G[7] - G[1] * G[8]) * id;
-    Gi[2] = (G[1] * G[5] - G[2] * G[4]) * id;
-    Gi[3] = c01 * id;
-    Gi[4] = (G[0] * G[8] - G[2] * G[6]) * id;
-    Gi[5] = (G[2] * G[3] - G[0] * G[5]) * id;
-    Gi[6] = c02 * id;
-    Gi[7] = (G[1] * G[6] - G[0] * G[7]) * id;
-    Gi[8] = (G[0] * G[4] - G[1] * G[3]) * id;
-    for (int i = 0; i < 3; ++i)
-      for (int l = 0; l < 3; ++l) dT[3 * i + l] = A * (T[3 * i] * Gi[l] + T[3 * i + 1] * Gi[3 + l] + T[3 * i + 2] * Gi[6 + l]);
-  }
-  return A;
-}
+double tlc_lifted_content(const double* T, const double* a_rest_gram, double* dT) { return lifted_content(T, a_rest_gram, dT); }
 
 TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,
                        const std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
@@ -130,7 +173,8 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   const double signed_volume = signed_volume_sum(p.x.data(), tets);
   double rest_measure = 0;
   double T[9];
-  p.rest_gram.resize(9 * p.nt);
+  p.rest_stride = options.tutte_form ? 0 : 9;
+  p.rest_gram.resize(options.tutte_form ? 9 : 9 * p.nt);
   if (options.tutte_form) {
     rest_measure = double(p.nt) * std::sqrt(2.0) / 12.0;
   } else {
@@ -141,20 +185,18 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   }
   const double alpha = options.alpha_ratio * std::abs(signed_volume) / rest_measure;
   const double a = std::cbrt(alpha * alpha);
-  for (std::size_t t = 0; t < p.nt; ++t) {
-    double* Gr = &p.rest_gram[9 * t];
-    if (options.tutte_form) {
-      // Unit regular simplex: Gram of edges from vertex 0: 1 on the diagonal, 1/2 off it.
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) Gr[3 * k + l] = a * (k == l ? 1.0 : 0.5);
-    } else {
+  if (options.tutte_form) {
+    // Unit regular simplex: Gram of edges from vertex 0: 1 on the diagonal, 1/2 off it.
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) p.rest_gram[3 * k + l] = a * (k == l ? 1.0 : 0.5);
+  } else {
+    for (std::size_t t = 0; t < p.nt; ++t) {
+      double* Gr = &p.rest_gram[9 * t];
       edge_matrix(source_xyz.data(), &tets[4 * t], T);
       for (int k = 0; k < 3; ++k)
         for (int l = 0; l < 3; ++l) Gr[3 * k + l] = a * (T[k] * T[l] + T[3 + k] * T[3 + l] + T[6 + k] * T[6 + l]);
     }
   }
-  p.tet_grad.resize(12 * p.nt);
-  p.tet_energy.resize(p.nt);
   std::vector<double> candidate = target_xyz;
   obj.evaluate = [&](const double* vars, double* grad, bool* all_positive) {
     const double e = p.evaluate(vars, grad, &obj.double_nonpositive);

@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 #include <LBFGS.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +24,12 @@ namespace volmap::untangle {
 
 // The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
 // input sanity); they never certify: validity is the exact volmap::count_nonpositive.
+// True when TBB may run one thread only (a global_control limit of 1, or an arena of one): loops
+// can then take their in-order form.
+inline bool single_thread() {
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1 || tbb::this_task_arena::max_concurrency() == 1;
+}
+
 inline double det3(const double* A) {
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
