@@ -66,4 +66,38 @@ TEST_CASE("stall stop: after stall_evaluations without a new minimum within stal
     CHECK(run_script(obj, counts, &left_at) == -1);
   }
 }
+
+TEST_CASE("CappedBacktracking: no trial step moves a variable farther than max_move") {
+  // f(x) = |x - c|² / 2 from x = 0 with c = (100, 50): L-BFGS's first trial step has unit length
+  // (x = d/|d|, a move of 0.89 in the first variable); with max_move 0.1 it must be at most 0.1.
+  for (double cap : {0.0, 0.1}) {
+    volmap::untangle::GuardedObjective obj;
+    obj.stop_when_certified = false;
+    obj.max_move = cap;
+    std::vector<Eigen::VectorXd> points;
+    const Eigen::Vector2d c(100, 50);
+    obj.evaluate = [&](const double* v, double* g, bool* all_positive) {
+      const Eigen::Vector2d x(v[0], v[1]);
+      points.emplace_back(x);
+      if (g) {
+        g[0] = x[0] - c[0];
+        g[1] = x[1] - c[1];
+      }
+      *all_positive = true;
+      return 0.5 * (x - c).squaredNorm();
+    };
+    LBFGSpp::LBFGSParam<double> param = volmap::untangle::lbfgs_param(1, 1e-12, 0, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO);
+    LBFGSpp::LBFGSSolver<double, volmap::untangle::CappedBacktracking> solver(param);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(2);
+    volmap::untangle::run_lbfgs(solver, obj, x);
+    REQUIRE(points.size() >= 2);
+    const double first_move = (points[1] - points[0]).cwiseAbs().maxCoeff();
+    if (cap > 0) {
+      CHECK(first_move <= cap * (1 + 1e-12));
+      CHECK(first_move >= cap * (1 - 1e-12));  // capped, not shrunk further: the step is accepted
+    } else {
+      CHECK(first_move == doctest::Approx(100 / std::sqrt(100.0 * 100 + 50 * 50)));
+    }
+  }
+}
 #endif

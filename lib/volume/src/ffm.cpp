@@ -492,6 +492,21 @@ untangle::GuardedObjective make_guard(const FfmEnergy::Impl& m, const std::vecto
   return g;
 }
 
+// Mean length of the tets' edges from their first vertex (a scale for trial moves).
+double mean_edge_length(const std::vector<double>& xyz, const std::vector<std::uint32_t>& tets) {
+  double sum = 0;
+  for (std::size_t s = 0; s < tets.size(); s += 4)
+    for (int k = 1; k < 4; ++k) {
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) {
+        const double d = xyz[3 * std::size_t(tets[s + k]) + i] - xyz[3 * std::size_t(tets[s]) + i];
+        d2 += d * d;
+      }
+      sum += std::sqrt(d2);
+    }
+  return tets.empty() ? 0 : sum / double(3 * (tets.size() / 4));
+}
+
 std::size_t count_nonpositive_det(const std::vector<double>& dets) {
   std::size_t k = 0;
   for (double d : dets) k += !(d > 0);
@@ -682,8 +697,9 @@ QualityResult ffm_quality_pass(const std::vector<double>& source_xyz, const std:
       best_energy = e;
     }
   };
+  obj.max_move = 0.5 * mean_edge_length(target_xyz, tets) * m.frame.scale;
   const LBFGSpp::LBFGSParam<double> param = untangle::lbfgs_param(max_iterations, 1e-6, relative_decrease, LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_ARMIJO);
-  LBFGSpp::LBFGSSolver<double, LBFGSpp::LineSearchBacktracking> solver(param);
+  LBFGSpp::LBFGSSolver<double, untangle::CappedBacktracking> solver(param);
   try {
     result.rounds = int(std::max<long>(0, untangle::run_lbfgs(solver, obj, x)));
     consider(x);

@@ -92,6 +92,7 @@ struct BoxFrame {
 struct CertifiedStop {};
 struct TimeStop {};
 struct StallStop {};
+struct FinishedStop {};
 
 // LBFGSpp objective around an energy: checks the deadline (throws TimeStop), optionally acts as a
 // barrier (+∞ when a double determinant is not positive) and, when every double determinant is
@@ -99,6 +100,9 @@ struct StallStop {};
 // throws CertifiedStop when it passes. With stall_evaluations > 0 it throws StallStop once the
 // double count of non-positive tets (reported by the energy in `double_nonpositive`) has stayed
 // at most stall_max_bad without a new minimum for stall_evaluations evaluations.
+// With try_finish set, each time the double count reaches a new minimum within 1..finish_max_bad
+// it is called at that point; when it returns true (it finished the map exactly, kept by the
+// caller) FinishedStop is thrown.
 // `last_x` holds the point at which a stop was thrown (for a stall: the point of the minimum).
 // With track_lowest, `lowest_x` holds the lowest-energy evaluated point whose double determinants
 // are all positive (a line search that gives up leaves the solver at a worse trial point).
@@ -117,6 +121,10 @@ struct GuardedObjective {
   int check_period = 10;
   long stall_evaluations = 0;           // 0: never stop on a stall
   std::size_t stall_max_bad = 0;
+  double max_move = 0;                  // CappedBacktracking: largest trial move of a variable (0: none)
+  std::function<bool(const double* vars)> try_finish;
+  std::size_t finish_max_bad = 0;
+  std::size_t finish_tried_at = std::numeric_limits<std::size_t>::max();  // count of the last try
   std::size_t double_nonpositive = 0;   // set by `evaluate` when stall_evaluations > 0
   std::size_t fewest_nonpositive = std::size_t(-1);
   long fewest_at = 0;                   // evaluation that reached fewest_nonpositive
@@ -129,6 +137,7 @@ struct GuardedObjective {
   bool past_deadline() const { return budget.expired(); }
   // Records the count of this evaluation at x; true when the run has stalled (see above).
   bool stalled(const Eigen::VectorXd& x);
+  bool finished(const Eigen::VectorXd& x);
   // Writes vars into the candidate and returns true when its exact count is 0.
   bool exactly_certified(const double* vars);
   double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad);
@@ -138,9 +147,26 @@ struct GuardedObjective {
 // relative energy-decrease test over one iteration when ftol > 0, at most 40 line-search steps.
 LBFGSpp::LBFGSParam<double> lbfgs_param(int max_iterations, double gtol, double ftol, int linesearch);
 
+// LBFGSpp's backtracking (Armijo) line search whose trial step first moves no variable farther than
+// the objective's max_move (0: no cap). L-BFGS starts every run with a step of unit length; on a
+// barrier energy (+∞ outside the positive set) the search then spends its first evaluations halving
+// it back to the scale of the mesh's edges.
+template <typename Scalar>
+class CappedBacktracking {
+ public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  template <typename Foo>
+  static void LineSearch(Foo& f, Scalar& fx, Vector& x, Vector& grad, Scalar& step, const Vector& drt, const Vector& xp,
+                         const LBFGSpp::LBFGSParam<Scalar>& param) {
+    const Scalar largest = drt.cwiseAbs().maxCoeff();
+    if (f.max_move > 0 && largest * step > f.max_move) step = f.max_move / largest;
+    LBFGSpp::LineSearchBacktracking<Scalar>::LineSearch(f, fx, x, grad, step, drt, xp, param);
+  }
+};
+
 // Runs one LBFGSpp minimisation from x; returns the iterations done, or -1 when the line search gave
 // up (LBFGSpp throws std::runtime_error / std::logic_error): x is then the solver's last iterate.
-// CertifiedStop, TimeStop and StallStop propagate.
+// CertifiedStop, TimeStop, StallStop and FinishedStop propagate.
 template <class Solver>
 long run_lbfgs(Solver& solver, GuardedObjective& objective, Eigen::VectorXd& x) {
   double fx = 0;
@@ -151,6 +177,8 @@ long run_lbfgs(Solver& solver, GuardedObjective& objective, Eigen::VectorXd& x) 
   } catch (const TimeStop&) {
     throw;
   } catch (const StallStop&) {
+    throw;
+  } catch (const FinishedStop&) {
     throw;
   } catch (const std::exception&) {
     return -1;
