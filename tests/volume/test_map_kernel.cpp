@@ -6,6 +6,7 @@
 #include <volmap/volume/kernel_descent.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/link_kernel.hpp>
+#include <volmap/volume/map_stages.hpp>
 #include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
@@ -64,4 +65,40 @@ TEST_CASE("kernel descent: a vertex pushed out of its star comes back; bad tets 
         for (int i = 0; i < 3; ++i) CHECK(X[3 * v + i] == X0[3 * v + i]);
   }
   CHECK(improved >= 10);
+}
+
+TEST_CASE("finish_by_link_kernels: a finished map or the given one, never a partial repair") {
+  auto m = map_test::kuhn_grid(3);
+  auto bnd = map_test::grid_boundary_flags(3);
+  volmap::MapState state(m, map_test::boundary_map_of(bnd, m.xyz));
+  SUBCASE("one interior vertex pushed out of its star: finished, exactly positive") {
+    auto X = m.xyz;
+    std::size_t v = 0;
+    while (bnd[v]) ++v;
+    X[3 * v] += 1.5;
+    REQUIRE(volmap::count_nonpositive(X, m.tets) > 0);
+    CHECK(volmap::finish_by_link_kernels(state, X));
+    CHECK(volmap::count_nonpositive(X, m.tets) == 0);
+  }
+  SUBCASE("scrambled maps: true exactly when the result is positive; false leaves the map bit-identical") {
+    std::size_t finished = 0, refused = 0;
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+      auto X = map_test::scrambled_target(m, bnd, seed, 0.9);
+      const auto X0 = X;
+      if (volmap::finish_by_link_kernels(state, X)) {
+        ++finished;
+        CHECK(volmap::count_nonpositive(X, m.tets) == 0);
+      } else {
+        ++refused;
+        CHECK(X == X0);
+        // the same local moves in place leave bad tets (what the trial refused to keep)
+        auto Y = X0;
+        volmap::relocate_into_link_kernels(volmap::TetMesh(m), bnd, Y, 50);
+        volmap::descend_into_link_kernels(volmap::TetMesh(m), bnd, Y);
+        CHECK(volmap::count_nonpositive(Y, m.tets) > 0);
+      }
+    }
+    CHECK(refused > 0);  // the scrambling is strong enough that some maps are not finished locally
+    MESSAGE("finished " << finished << ", refused " << refused);
+  }
 }

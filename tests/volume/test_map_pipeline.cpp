@@ -201,6 +201,47 @@ TEST_CASE("TLC: the in-order evaluation (one thread) and the parallel one give t
   CHECK(one != scrambled);
 }
 
+TEST_CASE("TLC finish callback: called at new lows within finish_max_bad; a true ends TLC with its map") {
+  auto m = map_test::kuhn_grid(4);
+  auto bnd = map_test::grid_boundary_flags(4);
+  const auto scrambled = map_test::scrambled_target(m, bnd, 3, 0.6);
+  const std::size_t start_bad = volmap::count_nonpositive(scrambled, m.tets);
+  REQUIRE(start_bad > 4);
+  SUBCASE("refusing finish: called only with strictly fewer non-positive tets each time, TLC unaffected") {
+    std::vector<std::size_t> seen;
+    volmap::TlcOptions o;
+    o.finish_max_bad = start_bad;
+    o.finish = [&](std::vector<double>& x) {
+      seen.push_back(volmap::count_nonpositive(x, m.tets));
+      x.assign(x.size(), 0.0);  // a refusing finish may scribble on its copy: TLC must not see it
+      return false;
+    };
+    auto with = scrambled, without = scrambled;
+    const auto r = volmap::tlc_untangle(m.xyz, m.tets, bnd, with, o);
+    volmap::tlc_untangle(m.xyz, m.tets, bnd, without);
+    CHECK(!r.finished);
+    CHECK(with == without);
+    REQUIRE(!seen.empty());
+    for (std::size_t k = 1; k < seen.size(); ++k) CHECK(seen[k] < seen[k - 1]);
+  }
+  SUBCASE("accepting finish: TLC returns the finish's map at the first call") {
+    int calls = 0;
+    volmap::TlcOptions o;
+    o.finish_max_bad = start_bad;
+    o.finish = [&](std::vector<double>& x) {
+      ++calls;
+      x = m.xyz;  // the identity map of the grid: positive
+      return true;
+    };
+    auto target = scrambled;
+    const auto r = volmap::tlc_untangle(m.xyz, m.tets, bnd, target, o);
+    CHECK(calls == 1);
+    CHECK(r.finished);
+    CHECK(r.certified);
+    CHECK(target == m.xyz);
+  }
+}
+
 TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, the mapper certifies") {
   VOLMAP_REQUIRE_DATA(obj, "maps/galaxymaps/example_object.vtk");
   VOLMAP_REQUIRE_DATA(par, "maps/galaxymaps/example_parameter.vtk");

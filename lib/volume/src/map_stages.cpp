@@ -70,6 +70,15 @@ KernelDescentResult run_kernel_descent(MapState& s) {
   return on_flat_target(s, [&](std::vector<double>& x) { return descend_into_link_kernels(s.source, s.locked.data(), x); });
 }
 
+bool finish_by_link_kernels(const MapState& s, std::vector<double>& x) {
+  s.require_compact();
+  std::vector<double> trial = x;
+  const RelocationResult r = relocate_into_link_kernels(s.source, s.locked.data(), trial, 50);
+  if (r.nonpositive_after > 0 && descend_into_link_kernels(s.source, s.locked.data(), trial).nonpositive_after > 0) return false;
+  x.swap(trial);
+  return true;
+}
+
 FfmResult run_ffm(MapState& s, const FfmOptions& options) {
   return on_flat_target(s, [&](std::vector<double>& x) {
     return ffm_untangle(s.source.positions(), s.source.tet_vertex_array(), s.locked.data(), x, options);

@@ -158,16 +158,16 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   p.nt = tets.size() / 4;
   if (source_xyz.size() != target_xyz.size() || locked.size() != nv) throw Error(ErrorKind::BadInput, "", 0, "tlc: inconsistent array sizes");
   untangle::GuardedObjective obj;
-  auto finish = [&] {
+  auto done = [&] {
     result.nonpositive = count_nonpositive(target_xyz, tets);
     result.certified = result.nonpositive == 0;
     result.evaluations = obj.evaluations;
     result.seconds = budget.elapsed();
     return result;
   };
-  if (count_nonpositive(target_xyz, tets) == 0) return finish();
+  if (count_nonpositive(target_xyz, tets) == 0) return done();
   p.layout.build(nv, tets, locked);
-  if (p.layout.free_vertices.empty()) return finish();
+  if (p.layout.free_vertices.empty()) return done();
   p.frame.fit(target_xyz, 10.0, "tlc");
   p.x = p.frame.to_scaled(target_xyz);
   const double signed_volume = signed_volume_sum(p.x.data(), tets);
@@ -205,6 +205,15 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   };
   obj.stall_evaluations = options.stall_evaluations;
   obj.stall_max_bad = options.stall_max_bad;
+  std::vector<double> finished_map;
+  if (options.finish && options.finish_max_bad > 0) {
+    obj.finish_max_bad = options.finish_max_bad;
+    obj.try_finish = [&](const double* vars) {
+      finished_map = target_xyz;
+      p.frame.write_back(p.layout, vars, finished_map);
+      return options.finish(finished_map);
+    };
+  }
   obj.layout = &p.layout;
   obj.frame = &p.frame;
   obj.tets = &tets;
@@ -231,9 +240,13 @@ TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<
   } catch (const untangle::StallStop&) {
     vars = obj.last_x;
     result.stalled = true;
+  } catch (const untangle::FinishedStop&) {
+    target_xyz.swap(finished_map);
+    result.finished = true;
+    return done();
   }
   p.frame.write_back(p.layout, vars.data(), target_xyz);
-  return finish();
+  return done();
 }
 
 }  // namespace volmap

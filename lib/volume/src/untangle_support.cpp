@@ -117,6 +117,12 @@ bool GuardedObjective::stalled(const Eigen::VectorXd& x) {
   return fewest_nonpositive <= stall_max_bad && evaluations - fewest_at >= stall_evaluations;
 }
 
+bool GuardedObjective::finished(const Eigen::VectorXd& x) {
+  if (!try_finish || double_nonpositive == 0 || double_nonpositive > finish_max_bad || double_nonpositive >= finish_tried_at) return false;
+  finish_tried_at = double_nonpositive;
+  return try_finish(x.data());
+}
+
 double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
   ++evaluations;
   if (past_deadline()) {
@@ -139,6 +145,10 @@ double GuardedObjective::operator()(const Eigen::VectorXd& x, Eigen::VectorXd& g
       throw CertifiedStop{};
     }
     next_exact_check = evaluations + check_period;
+  }
+  if (finished(x)) {
+    last_x = x;
+    throw FinishedStop{};
   }
   if (stalled(x)) {
     last_x = fewest_x;

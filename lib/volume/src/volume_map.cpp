@@ -219,9 +219,17 @@ class VolumeMapper {
     to.stall_max_bad = options_.early_repair_max_bad;
   }
 
+  // In the cascade TLC offers its iterate to exact local moves (finish_by_link_kernels) each time
+  // its count reaches a new low within tlc_finish_max_bad; they end TLC only by finishing the map.
+  // A partial local repair is not kept there: moved vertices are a worse start for TLC than its own
+  // iterate, and its map a worse start for the quality pass the fewer iterations smoothed it.
   void untangle_from_tlc() {
     TlcOptions to;
     hand_over_stalls(to);
+    if (cascade()) {
+      to.finish_max_bad = options_.tlc_finish_max_bad;
+      to.finish = [&](std::vector<double>& x) { return finish_by_link_kernels(state_, x); };
+    }
     to.time_limit_seconds = budget_->option_seconds(cascade() ? options_.tlc_time_share : 1.0);
     judged_stage("tlc", [&] { run_tlc(state_, to); });
     link_kernel();

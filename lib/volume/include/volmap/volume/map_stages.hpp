@@ -35,6 +35,10 @@ TlcResult run_tlc(MapState& state, const TlcOptions& options);
 RelocationResult run_link_kernel(MapState& state, int max_sweeps);
 // §10 bad-tet-driven descent of single vertices towards their link kernel.
 KernelDescentResult run_kernel_descent(MapState& state);
+// §7 + §10 as a trial on a map x of the state's mesh (not the state's own target): link-kernel
+// relocation, then kernel descent. True when they leave x exactly positive on every tet; x is then
+// the finished map. False: x is left as it was given.
+bool finish_by_link_kernels(const MapState& state, std::vector<double>& x);
 FfmResult run_ffm(MapState& state, const FfmOptions& options);
 LocalUntangleResult run_local_ffm(MapState& state, const LocalUntangleOptions& options);
 QualityResult run_quality_pass(MapState& state, ReferenceShape reference, int max_iterations, double time_limit_seconds,

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace volmap {
@@ -25,6 +26,12 @@ struct TlcOptions {
   // is left at the point of that minimum. For a caller with a cheaper repair of a few tets.
   long stall_evaluations = 0;
   std::size_t stall_max_bad = 0;
+  // Early finish: each time the double count of non-positive tets reaches a new minimum within
+  // 1..finish_max_bad, `finish` is called with a copy of the map at that point (unscaled, all
+  // vertices). When it returns true it has made that copy exactly positive everywhere (e.g. by exact
+  // local moves); TLC ends with it (result.finished). When false, TLC goes on as if not called.
+  std::size_t finish_max_bad = 0;
+  std::function<bool(std::vector<double>& target_xyz)> finish;
 };
 
 struct TlcResult {
@@ -34,6 +41,7 @@ struct TlcResult {
   double seconds = 0;
   bool timed_out = false;
   bool stalled = false;
+  bool finished = false;  // ended by `finish`
 };
 
 TlcResult tlc_untangle(const std::vector<double>& source_xyz, const std::vector<std::uint32_t>& tets,

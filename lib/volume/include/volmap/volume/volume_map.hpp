@@ -70,6 +70,10 @@ struct VolumeMapOptions {
   // non-positive tets is at most early_repair_max_bad and has not reached a new minimum for this
   // many energy evaluations (0 = TLC runs to convergence or its time share).
   long tlc_stall_evaluations = 150;
+  // Cascade: exact local moves (link kernel, kernel descent) are tried as a finish of TLC's iterate
+  // each time its double count of non-positive tets reaches a new low within 1..this (0 = never).
+  // Larger is faster and leaves a rougher map for the quality pass (docs/mapping.md §8).
+  std::size_t tlc_finish_max_bad = 50;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
