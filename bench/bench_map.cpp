@@ -1,14 +1,33 @@
 // Mapping micro-benchmarks: FFM energy+gradient per tet, link-kernel LP, on generated Kuhn grids.
 // The G1 success table is produced by bench/run_map_g1.sh + bench/summarise_map_g1.py (see there).
+//
+// Same-run anchors (bench/side_by_side.hpp: ours_ms, anchor_ms, ratio = ours/anchor, CPU time, min):
+//   BM_FfmEnergyGradient_SideBySide  ours = FfmEnergy::evaluate (energy + gradient, as BM_FfmEnergyGradient);
+//                                    anchor = a FLOOR, not the same quantity: a plain per-tet loop that
+//                                    only forms J = (target edge matrix) * (source edge matrix).inverse()
+//                                    with Eigen::Matrix3d and takes det(J) and |J|_F, the minimal work
+//                                    any distortion energy needs (no barrier, no gradient).
+//   BM_TlcEnergy_SideBySide          ours = volmap::tlc_lifted_content (value AND gradient dT) summed over
+//                                    the tets, Tutte form a·(1 diagonal, 1/2 off), a = 1e-4; anchor =
+//                                    the published formulation, VALUE ONLY: the lifted tet's volume from
+//                                    its squared edge lengths |x_i - x_j|^2 + a (d_ij = 1) through the 5x5
+//                                    Cayley-Menger determinant (Eigen, .determinant()), V = sqrt(det/288).
+//                                    The two sums must agree to 1e-9 relative.
 #include <benchmark/benchmark.h>
 
 #include <volmap/core/local_tables.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 #include <volmap/volume/ffm.hpp>
+#include <volmap/volume/tlc.hpp>
+
+#include <Eigen/Dense>
+
+#include "side_by_side.hpp"
 
 #include "../tests/support/map_test_meshes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -89,6 +108,121 @@ void BM_ConeRepairScattered(benchmark::State& state) {
   state.counters["failed"] = double(r.failed_clusters);
 }
 BENCHMARK(BM_ConeRepairScattered)->Unit(benchmark::kMillisecond);
+
+// ---- Same-run anchors ----------------------------------------------------------------------------
+
+// Edge matrix of tet t as Eigen columns x_{k+1} - x_0.
+Eigen::Matrix3d edge_matrix(const std::vector<double>& xyz, const std::uint32_t* tet) {
+  Eigen::Matrix3d E;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) E(i, k) = xyz[3 * std::size_t(tet[k + 1]) + std::size_t(i)] - xyz[3 * std::size_t(tet[0]) + std::size_t(i)];
+  return E;
+}
+
+void BM_FfmEnergyGradient_SideBySide(benchmark::State& state) {
+  const Grid g = kuhn(int(state.range(0)));
+  auto target = g.xyz;
+  for (std::size_t v = 0; v < g.bnd.size(); ++v)
+    if (!g.bnd[v]) target[3 * v] += 0.3 * std::sin(double(v));
+  volmap::FfmEnergy E(g.xyz, g.tets, g.bnd, target, volmap::ReferenceShape::RegularTet);
+  auto x = E.initial_variables();
+  std::vector<double> grad(x.size());
+  const std::size_t nt = g.tets.size() / 4;
+  double floor_sum = 0;
+  bench::run_side_by_side(
+      state, [&] { benchmark::DoNotOptimize(E.evaluate(x.data(), 0.1, grad.data())); },
+      [&] {
+        // Floor anchor: per tet J = T S^-1, det J and |J|_F (source S from the grid, target T).
+        double s = 0;
+        for (std::size_t t = 0; t < nt; ++t) {
+          const std::uint32_t* tet = &g.tets[4 * t];
+          const Eigen::Matrix3d J = edge_matrix(target, tet) * edge_matrix(g.xyz, tet).inverse();
+          s += J.determinant() + J.norm();
+        }
+        floor_sum = s;
+        benchmark::DoNotOptimize(floor_sum);
+      });
+  if (!std::isfinite(floor_sum)) return state.SkipWithError("floor anchor: non-finite Jacobians");
+  state.counters["tets"] = double(nt);
+}
+BENCHMARK(BM_FfmEnergyGradient_SideBySide)->Arg(30)->Unit(benchmark::kMillisecond)->UseRealTime()->ComputeStatistics("min", bench::min_of);
+
+// Lifted content of one tet from its lifted squared edge lengths (Cayley-Menger, value only).
+double cayley_menger_lifted_volume(const std::vector<double>& xyz, const std::uint32_t* tet, double a) {
+  Eigen::Matrix<double, 5, 5> CM;
+  CM(0, 0) = 0;
+  for (int i = 1; i < 5; ++i) CM(0, i) = CM(i, 0) = 1;
+  for (int i = 0; i < 4; ++i) {
+    CM(i + 1, i + 1) = 0;
+    for (int j = i + 1; j < 4; ++j) {
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c) {
+        const double d = xyz[3 * std::size_t(tet[i]) + std::size_t(c)] - xyz[3 * std::size_t(tet[j]) + std::size_t(c)];
+        d2 += d * d;
+      }
+      CM(i + 1, j + 1) = CM(j + 1, i + 1) = d2 + a;  // Tutte form: d_ij = 1
+    }
+  }
+  return std::sqrt(std::max(CM.determinant() / 288.0, 0.0));
+}
+
+void BM_TlcEnergy_SideBySide(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Grid g = kuhn(n);
+  // Interior vertices moved by up to 0.3 grid spacings (the lift keeps every content > 0 even if a tet flips).
+  auto target = g.xyz;
+  for (std::size_t v = 0; v < g.bnd.size(); ++v)
+    if (!g.bnd[v])
+      for (int c = 0; c < 3; ++c) target[3 * v + std::size_t(c)] += 0.3 / n * std::sin(double(3 * v + std::size_t(c)));
+  const double a = 1e-4;
+  double rest[9];
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) rest[3 * k + l] = a * (k == l ? 1.0 : 0.5);
+  const std::size_t nt = g.tets.size() / 4;
+  std::vector<double> dT(9 * nt);
+  // Row-major target edge matrix: T[3 * i + k] = coordinate i of x_{k+1} - x_0.
+  const auto target_edges = [&target](const std::uint32_t* tet, double* T) {
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        T[3 * i + k] = target[3 * std::size_t(tet[k + 1]) + std::size_t(i)] - target[3 * std::size_t(tet[0]) + std::size_t(i)];
+  };
+  double ours_sum = 0, anchor_sum = 0;
+  bench::run_side_by_side(
+      state,
+      [&] {
+        double s = 0;
+        for (std::size_t t = 0; t < nt; ++t) {
+          const std::uint32_t* tet = &g.tets[4 * t];
+          double T[9];
+          target_edges(tet, T);
+          s += volmap::tlc_lifted_content(T, rest, &dT[9 * t]);
+        }
+        ours_sum = s;
+        benchmark::DoNotOptimize(ours_sum);
+        benchmark::DoNotOptimize(dT.data());
+      },
+      [&] {
+        double s = 0;
+        for (std::size_t t = 0; t < nt; ++t) s += cayley_menger_lifted_volume(target, &g.tets[4 * t], a);
+        anchor_sum = s;
+        benchmark::DoNotOptimize(anchor_sum);
+      });
+  const double rel = std::abs(ours_sum - anchor_sum) / std::max(std::abs(anchor_sum), 1e-300);
+  double worst_tet = 0;  // untimed: the largest per-tet relative difference
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::uint32_t* tet = &g.tets[4 * t];
+    double T[9];
+    target_edges(tet, T);
+    const double o = volmap::tlc_lifted_content(T, rest, nullptr), c = cayley_menger_lifted_volume(target, tet, a);
+    worst_tet = std::max(worst_tet, std::abs(o - c) / c);
+  }
+  state.counters["max_tet_rel_diff"] = worst_tet;
+  state.counters["tets"] = double(nt);
+  state.counters["content_sum"] = ours_sum;
+  state.counters["rel_diff"] = rel;
+  if (!(rel <= 1e-9)) return state.SkipWithError("Cayley-Menger anchor disagrees with tlc_lifted_content by > 1e-9 relative");
+}
+BENCHMARK(BM_TlcEnergy_SideBySide)->Arg(30)->Unit(benchmark::kMillisecond)->UseRealTime()->ComputeStatistics("min", bench::min_of);
 
 }  // namespace
 BENCHMARK_MAIN();
