@@ -179,12 +179,7 @@ TEST_CASE("TLC: the in-order evaluation (one thread) and the parallel one give t
   // gather per vertex in the same order. Same sums, same order: the runs must agree exactly.
   auto m = map_test::kuhn_grid(5);
   auto bnd = map_test::grid_boundary_flags(5);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-0.5, 0.5);
-  auto scrambled = m.xyz;
-  for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    if (!bnd[v])
-      for (int i = 0; i < 3; ++i) scrambled[3 * v + i] += u(rng);
+  const auto scrambled = map_test::scrambled_target(m, bnd, 11, 0.5);
   REQUIRE(volmap::count_nonpositive(scrambled, m.tets) > 0);
   volmap::TlcOptions o;
   o.max_evaluations = 40;  // stop mid-way: the trajectories, not only the end, must agree
