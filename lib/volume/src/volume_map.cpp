@@ -221,8 +221,9 @@ class VolumeMapper {
 
   // In the cascade TLC offers its iterate to exact local moves (finish_by_link_kernels) each time
   // its count reaches a new low within tlc_finish_max_bad; they end TLC only by finishing the map.
-  // A partial local repair is not kept there: moved vertices are a worse start for TLC than its own
-  // iterate, and its map a worse start for the quality pass the fewer iterations smoothed it.
+  // A partial local repair is not kept: moved vertices are a worse start for TLC than its own
+  // iterate. The bound is small because a map finished earlier had fewer TLC iterations of
+  // smoothing, which the quality pass does not make up for (docs/mapping.md §6).
   void untangle_from_tlc() {
     TlcOptions to;
     hand_over_stalls(to);

@@ -72,7 +72,7 @@ struct VolumeMapOptions {
   long tlc_stall_evaluations = 150;
   // Cascade: exact local moves (link kernel, kernel descent) are tried as a finish of TLC's iterate
   // each time its double count of non-positive tets reaches a new low within 1..this (0 = never).
-  // Larger is faster and leaves a rougher map for the quality pass (docs/mapping.md §8).
+  // Larger is faster and leaves a rougher map for the quality pass (docs/mapping.md §6).
   std::size_t tlc_finish_max_bad = 50;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
