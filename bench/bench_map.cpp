@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -47,22 +48,28 @@ Grid kuhn(int n) {
   return {std::move(d.xyz), std::move(d.tets), map_test::grid_boundary_flags(n)};
 }
 
-// The FFM benchmarks' target: interior vertices moved along x by 0.3·sin(id) (some tets inverted).
-std::vector<double> ffm_target(const Grid& g) {
-  auto target = g.xyz;
-  for (std::size_t v = 0; v < g.bnd.size(); ++v)
-    if (!g.bnd[v]) target[3 * v] += 0.3 * std::sin(double(v));
-  return target;
-}
+// The FFM benchmarks' problem: an n³ Kuhn grid whose interior vertices are moved along x by
+// 0.3·sin(id) (some tets inverted), its energy with the regular reference, variables and gradient.
+struct FfmProblem {
+  Grid g;
+  std::vector<double> target;
+  std::unique_ptr<volmap::FfmEnergy> energy;
+  std::vector<double> x, grad;
+
+  explicit FfmProblem(int n) : g(kuhn(n)), target(g.xyz) {
+    for (std::size_t v = 0; v < g.bnd.size(); ++v)
+      if (!g.bnd[v]) target[3 * v] += 0.3 * std::sin(double(v));
+    energy = std::make_unique<volmap::FfmEnergy>(g.xyz, g.tets, g.bnd, target, volmap::ReferenceShape::RegularTet);
+    x = energy->initial_variables();
+    grad.resize(x.size());
+  }
+  double evaluate() { return energy->evaluate(x.data(), 0.1, grad.data()); }
+};
 
 void BM_FfmEnergyGradient(benchmark::State& state) {
-  const Grid g = kuhn(int(state.range(0)));
-  const auto target = ffm_target(g);
-  volmap::FfmEnergy E(g.xyz, g.tets, g.bnd, target, volmap::ReferenceShape::RegularTet);
-  auto x = E.initial_variables();
-  std::vector<double> grad(x.size());
-  for (auto _ : state) benchmark::DoNotOptimize(E.evaluate(x.data(), 0.1, grad.data()));
-  state.counters["ns/tet"] = benchmark::Counter(double(g.tets.size() / 4), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  FfmProblem p(int(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(p.evaluate());
+  state.counters["ns/tet"] = benchmark::Counter(double(p.g.tets.size() / 4), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_FfmEnergyGradient)->Arg(10)->Arg(30)->Unit(benchmark::kMillisecond);
 
@@ -126,15 +133,13 @@ Eigen::Matrix3d edge_matrix(const std::vector<double>& xyz, const std::uint32_t*
 }
 
 void BM_FfmEnergyGradient_SideBySide(benchmark::State& state) {
-  const Grid g = kuhn(int(state.range(0)));
-  const auto target = ffm_target(g);
-  volmap::FfmEnergy E(g.xyz, g.tets, g.bnd, target, volmap::ReferenceShape::RegularTet);
-  auto x = E.initial_variables();
-  std::vector<double> grad(x.size());
+  FfmProblem p(int(state.range(0)));
+  const Grid& g = p.g;
+  const std::vector<double>& target = p.target;
   const std::size_t nt = g.tets.size() / 4;
   double floor_sum = 0;
   bench::run_side_by_side(
-      state, [&] { benchmark::DoNotOptimize(E.evaluate(x.data(), 0.1, grad.data())); },
+      state, [&] { benchmark::DoNotOptimize(p.evaluate()); },
       [&] {
         // Floor anchor: per tet J = T S^-1, det J and |J|_F (source S from the grid, target T).
         double s = 0;

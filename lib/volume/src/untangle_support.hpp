@@ -22,14 +22,14 @@
 
 namespace volmap::untangle {
 
-// The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
-// input sanity); they never certify: validity is the exact volmap::count_nonpositive.
 // True when TBB may run one thread only (a global_control limit of 1, or an arena of one): loops
 // can then take their in-order form.
 inline bool single_thread() {
   return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1 || tbb::this_task_arena::max_concurrency() == 1;
 }
 
+// The double determinants and volumes below drive the optimisers (energies, step guards, scaling,
+// input sanity); they never certify: validity is the exact volmap::count_nonpositive.
 inline double det3(const double* A) {
   return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) + A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
@@ -125,7 +125,7 @@ struct GuardedObjective {
   std::function<bool(const double* vars)> try_finish;
   std::size_t finish_max_bad = 0;
   std::size_t finish_tried_at = std::numeric_limits<std::size_t>::max();  // count of the last try
-  std::size_t double_nonpositive = 0;   // set by `evaluate` when stall_evaluations > 0
+  std::size_t double_nonpositive = 0;   // set by `evaluate` when stalls or finishes are used
   std::size_t fewest_nonpositive = std::size_t(-1);
   long fewest_at = 0;                   // evaluation that reached fewest_nonpositive
   Eigen::VectorXd fewest_x;             // its point: where a StallStop leaves the run
@@ -137,6 +137,7 @@ struct GuardedObjective {
   bool past_deadline() const { return budget.expired(); }
   // Records the count of this evaluation at x; true when the run has stalled (see above).
   bool stalled(const Eigen::VectorXd& x);
+  // Calls try_finish at x when the count is a new low within 1..finish_max_bad; its verdict.
   bool finished(const Eigen::VectorXd& x);
   // Writes vars into the candidate and returns true when its exact count is 0.
   bool exactly_certified(const double* vars);
