@@ -9,6 +9,7 @@
 
 #include "mesh_test_util.hpp"
 
+#include <array>
 #include <map>
 #include <random>
 #include <set>
@@ -231,6 +232,22 @@ TEST_CASE("random tet soups: analyze_topology agrees with a std::map oracle") {
     CHECK(r.num_overshared_edges == over);
     CHECK(r.boundary_euler == long(bverts.size()) - long(bedges.size()) + long(boundary));
     CHECK(r.num_tet_components == roots.size());
+    // Duplicates: tets (of four distinct ids) whose vertex set is an earlier tet's.
+    std::map<std::array<std::uint32_t, 4>, std::uint32_t> first_with;
+    std::size_t duplicates = 0;
+    std::uint32_t dup_first = 0xFFFFFFFFu, dup_second = 0xFFFFFFFFu;
+    for (std::uint32_t t = 0; t < nt; ++t) {
+      if (deg[t]) continue;
+      std::array<std::uint32_t, 4> key;
+      std::copy(&d.tets[4 * t], &d.tets[4 * t] + 4, key.begin());
+      std::sort(key.begin(), key.end());
+      const auto [it, fresh] = first_with.emplace(key, t);
+      if (fresh) continue;
+      if (duplicates++ == 0) dup_first = it->second, dup_second = t;
+    }
+    CHECK(r.num_duplicate_tets == duplicates);
+    CHECK(r.example_duplicate_first == dup_first);
+    CHECK(r.example_duplicate_second == dup_second);
   }
 }
 
@@ -258,5 +275,50 @@ TEST_CASE("boundary half-faces agree with the IO module's boundary_half_faces (i
     for (std::size_t k = 0; k < io.size(); ++k) CHECK(io[k] == r.boundary_half_faces[k]);
     const std::vector<std::uint32_t> bv = boundary_vertex_ids(d);
     CHECK(bv.size() == r.num_boundary_vertices);
+  }
+}
+
+TEST_CASE("random triangle soups: analyze_surface_topology's edges agree with a std::map oracle") {
+  std::mt19937 rng(19);
+  for (int round = 0; round < 300; ++round) {
+    const std::uint32_t nv = 3 + rng() % 8;
+    std::vector<std::uint32_t> tris;
+    for (std::size_t t = 0, nt = 1 + rng() % 14; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) tris.push_back(rng() % nv);
+    const SurfaceTopology s = analyze_surface_topology(nv, tris);
+    // Oracle: per undirected edge of a triangle with three distinct ids, its triangles and how many
+    // traverse it from the lower id to the higher.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> edges;  // (count, forward)
+    std::set<std::uint32_t> used;
+    std::size_t valid = 0;
+    for (std::size_t t = 0; t < tris.size() / 3; ++t) {
+      const std::uint32_t* v = &tris[3 * t];
+      if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+      ++valid;
+      for (int k = 0; k < 3; ++k) {
+        used.insert(v[k]);
+        const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+        auto& e = edges[{std::min(a, b), std::max(a, b)}];
+        ++e.first;
+        e.second += a < b;
+      }
+    }
+    std::size_t border = 0, over = 0, inconsistent = 0;
+    std::uint32_t example = 0xFFFFFFFFu;
+    for (const auto& [e, c] : edges) {
+      border += c.first == 1;
+      over += c.first > 2;
+      inconsistent += c.first == 2 && c.second != 1;
+      if (c.first != 2 && example == 0xFFFFFFFFu) example = e.first;
+    }
+    INFO("round " << round);
+    CHECK(s.num_triangles == valid);
+    CHECK(s.num_used_vertices == used.size());
+    CHECK(s.num_edges == edges.size());
+    CHECK(s.num_border_edges == border);
+    CHECK(s.num_overshared_edges == over);
+    CHECK(s.num_inconsistent_edges == inconsistent);
+    CHECK(s.example_nonmanifold_edge_vertex == example);
+    CHECK(s.euler == long(used.size()) - long(edges.size()) + long(valid));
   }
 }

@@ -1,6 +1,7 @@
 // Input-mesh validation (input_mesh.hpp): the seven checks of check_tet_mesh, the winding of interior
 // faces and duplicate tets, turned into sentences. Example offenders (first zero/negative tet, first
-// tet repeating a vertex, first duplicate pair) are looked up only when the matching count is nonzero.
+// tet repeating a vertex) are looked up only when the matching count is nonzero; duplicate tets (among
+// tets of four distinct vertices) come with the topology report.
 #include <volmap/check/input_mesh.hpp>
 
 #include <volmap/check/orientation.hpp>
@@ -9,8 +10,6 @@
 #include <volmap/core/local_tables.hpp>
 
 #include <algorithm>
-#include <array>
-#include <numeric>
 
 namespace volmap {
 namespace {
@@ -31,34 +30,6 @@ std::size_t first_repeating_tet(const TetMeshData& mesh) {
   return mesh.num_tets();
 }
 
-// Number of tets whose vertex set equals an earlier tet's, and the first such pair (by the later tet).
-struct Duplicates {
-  std::size_t count = 0;
-  std::size_t first = 0, second = 0;
-};
-Duplicates duplicate_tets(const TetMeshData& mesh) {
-  const std::size_t nt = mesh.num_tets();
-  std::vector<std::array<std::uint32_t, 4>> keys(nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    std::copy(&mesh.tets[4 * t], &mesh.tets[4 * t] + 4, keys[t].begin());
-    std::sort(keys[t].begin(), keys[t].end());
-  }
-  std::vector<std::uint32_t> order(nt);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
-  });
-  Duplicates d;
-  for (std::size_t k = 1; k < nt; ++k) {
-    if (keys[order[k]] != keys[order[k - 1]]) continue;
-    std::size_t first = k - 1;  // the group's smallest id
-    while (first > 0 && keys[order[first - 1]] == keys[order[k]]) --first;
-    if (d.count == 0 || order[k] < d.second) d.first = order[first], d.second = order[k];
-    ++d.count;
-  }
-  return d;
-}
-
 // The first tet whose exact sign is `sign` (or 0 when there is none).
 std::size_t first_tet_with_sign(const TetMeshData& mesh, int sign) {
   std::vector<std::int8_t> signs(mesh.num_tets());
@@ -72,10 +43,9 @@ void add_structure_problems(const TetMeshData& mesh, const TopologyReport& topo,
   if (topo.num_degenerate_tets)
     out.push_back(plural(topo.num_degenerate_tets, "tet uses", "tets use") + " a vertex twice (first: tet " +
                   fmt(first_repeating_tet(mesh)) + ")");
-  const Duplicates dup = duplicate_tets(mesh);
-  if (dup.count)
-    out.push_back(plural(dup.count, "tet repeats", "tets repeat") + " the four vertices of another (first: tets " +
-                  fmt(dup.first) + " and " + fmt(dup.second) + ")");
+  if (topo.num_duplicate_tets)
+    out.push_back(plural(topo.num_duplicate_tets, "tet repeats", "tets repeat") + " the four vertices of another (first: tets " +
+                  fmt(topo.example_duplicate_first) + " and " + fmt(topo.example_duplicate_second) + ")");
   if (topo.num_nonmanifold_faces)
     out.push_back(plural(topo.num_nonmanifold_faces, "face is", "faces are") + " shared by more than two tets (first: " +
                   half_face(topo.example_nonmanifold_face) + ")");

@@ -1,7 +1,8 @@
 // analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components;
-// its boundary triangles go through analyze_surface_topology (sorted edge keys, union-find components
-// with per-component chi, per-vertex link union-find over a CSR of incident triangles), which the
-// surface checks (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
+// its boundary triangles go through analyze_surface_topology (union-find components with
+// per-component chi; per vertex, over a CSR of incident triangles, its link: link union-find, and the
+// edges to higher ids with their multiplicity and direction), which the surface checks
+// (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
 #include <volmap/core/topology.hpp>
 
 #include <volmap/core/error.hpp>
@@ -41,6 +42,28 @@ struct UnionFind {
 
 std::string fmt(std::size_t n) { return std::to_string(n); }
 
+// Identical tets share all four faces; each set of copies is counted once, in the group of its face
+// opposite its largest vertex (face_max: the group's largest vertex id), as the members whose
+// opposite vertex is larger than face_max and equal to an earlier member's (members come sorted by
+// tet). Groups hold two tets except at non-manifold faces, so the double loop stays small.
+void count_duplicate_tets(const std::uint32_t* tv, std::uint32_t face_max, const std::uint32_t* g, std::size_t n,
+                          TopologyReport& r) {
+  for (std::size_t k = 1; k < n; ++k) {
+    const std::uint32_t hk = detail::hf_of(g[k]);
+    if (tv[hk] <= face_max) continue;
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::uint32_t hj = detail::hf_of(g[j]);
+      if (tv[hj] != tv[hk]) continue;
+      ++r.num_duplicate_tets;
+      if (r.example_duplicate_second == kNone || (hk >> 2) < r.example_duplicate_second) {
+        r.example_duplicate_first = hj >> 2;
+        r.example_duplicate_second = hk >> 2;
+      }
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 TopologyReport analyze_topology(const TetMeshData& data) {
@@ -77,13 +100,14 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   std::vector<std::uint32_t>& bhf = r.boundary_half_faces;
   detail::group_faces(
       tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
-      [&](std::uint32_t, const std::uint64_t*, const std::uint32_t* g, std::size_t n) {
+      [&](std::uint32_t, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
         ++r.num_faces;
         const std::uint32_t h0 = detail::hf_of(g[0]);
         if (n == 1) {
           bhf.push_back(h0);
           return;
         }
+        count_duplicate_tets(tv, std::uint32_t(keys[0]), g, n, r);
         for (std::size_t k = 1; k < n; ++k) tet_sets.unite(h0 >> 2, detail::hf_of(g[k]) >> 2);
         if (n == 2) {
           ++r.num_interior_faces;
@@ -160,20 +184,6 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
   }
   st.num_triangles = valid.size();
 
-  // Edges: (lo, hi) keys with the traversal direction, sorted.
-  struct HalfEdge {
-    std::uint64_t key;
-    std::uint32_t forward;  // 1 when traversed lo -> hi
-  };
-  std::vector<HalfEdge> half_edges;
-  half_edges.reserve(3 * valid.size());
-  for (std::uint32_t t : valid)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
-      half_edges.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1u : 0u});
-    }
-  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
-
   UnionFind sets(num_vertices);
   for (std::uint32_t t : valid) {
     sets.unite(tris[3 * t], tris[3 * t + 1]);
@@ -183,7 +193,7 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
   for (std::uint32_t t : valid)
     for (int k = 0; k < 3; ++k) used[tris[3 * t + k]] = 1;
 
-  // Per-component V, E, F -> chi_i.
+  // Per-component V and F (E below) -> chi_i.
   std::vector<long long> comp_chi(num_vertices, 0);
   for (std::size_t v = 0; v < num_vertices; ++v)
     if (used[v]) {
@@ -191,25 +201,9 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
       ++comp_chi[sets.find(std::uint32_t(v))];
       if (sets.find(std::uint32_t(v)) == v) ++st.num_components;
     }
-  for (std::size_t i = 0; i < half_edges.size();) {
-    std::size_t j = i;
-    std::uint32_t forward = 0;
-    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) forward += half_edges[j++].forward;
-    const std::size_t count = j - i;
-    ++st.num_edges;
-    --comp_chi[sets.find(std::uint32_t(half_edges[i].key >> 32))];
-    if (count == 1) ++st.num_border_edges;
-    if (count > 2) ++st.num_overshared_edges;
-    if (count != 2 && st.example_nonmanifold_edge_vertex == kNone)
-      st.example_nonmanifold_edge_vertex = std::uint32_t(half_edges[i].key >> 32);
-    if (count == 2 && forward != 1) ++st.num_inconsistent_edges;
-    i = j;
-  }
   for (std::uint32_t t : valid) ++comp_chi[sets.find(tris[3 * t])];
-  st.euler = (long long)st.num_used_vertices - (long long)st.num_edges + (long long)st.num_triangles;
 
-  // Vertex links: vertex -> incident valid triangles (CSR), then per vertex a small union-find over
-  // the link's vertices; a manifold vertex has one link component and link degrees <= 2.
+  // Vertex -> incident valid triangles (CSR).
   std::vector<std::uint32_t> offsets(num_vertices + 1, 0);
   for (std::uint32_t t : valid)
     for (int k = 0; k < 3; ++k) ++offsets[tris[3 * t + k] + 1];
@@ -220,7 +214,12 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
     for (std::uint32_t t : valid)
       for (int k = 0; k < 3; ++k) incident[fill[tris[3 * t + k]]++] = t;
   }
-  std::vector<std::uint32_t> link_vertices, link_degree;
+
+  // Per vertex v, its link: the opposite edge (next, prev) of each incident triangle (v, next, prev).
+  // A link vertex w is on as many triangles with v as its link degree, so the edges (v, w), w > v,
+  // are counted here with their multiplicity and direction (v -> w when w follows v), in (v, w)
+  // order. A manifold vertex has one link component and link degrees <= 2.
+  std::vector<std::uint32_t> link_vertices, link_degree, link_forward;
   UnionFind link_sets(0);
   for (std::size_t v = 0; v < num_vertices; ++v) {
     const std::uint32_t begin = offsets[v], end = offsets[v + 1];
@@ -236,30 +235,39 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
     const std::size_t m = link_vertices.size();
     link_sets.reset(m);
     link_degree.assign(m, 0);
+    link_forward.assign(m, 0);
     auto local = [&](std::uint32_t w) {
       return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
     };
     for (std::uint32_t i = begin; i < end; ++i) {
-      std::uint32_t ends[2], n = 0;
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t w = tris[3 * incident[i] + k];
-        if (w != v) ends[n++] = local(w);
-      }
-      link_sets.unite(ends[0], ends[1]);
-      ++link_degree[ends[0]];
-      ++link_degree[ends[1]];
+      const std::uint32_t* tri = &tris[3 * incident[i]];
+      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      const std::uint32_t next = local(tri[(at + 1) % 3]), prev = local(tri[(at + 2) % 3]);
+      link_sets.unite(next, prev);
+      ++link_degree[next];
+      ++link_degree[prev];
+      ++link_forward[next];
     }
     std::size_t link_components = 0;
     bool degree_ok = true;
     for (std::uint32_t i = 0; i < m; ++i) {
       if (link_sets.find(i) == i) ++link_components;
       if (link_degree[i] > 2) degree_ok = false;
+      if (link_vertices[i] < v) continue;
+      const std::uint32_t count = link_degree[i];  // the edge (v, w) with w > v
+      ++st.num_edges;
+      --comp_chi[sets.find(std::uint32_t(v))];
+      if (count == 1) ++st.num_border_edges;
+      if (count > 2) ++st.num_overshared_edges;
+      if (count != 2 && st.example_nonmanifold_edge_vertex == kNone) st.example_nonmanifold_edge_vertex = std::uint32_t(v);
+      if (count == 2 && link_forward[i] != 1) ++st.num_inconsistent_edges;
     }
     if (link_components != 1 || !degree_ok) {
       ++st.num_nonmanifold_vertices;
       if (st.example_nonmanifold_vertex == kNone) st.example_nonmanifold_vertex = std::uint32_t(v);
     }
   }
+  st.euler = (long long)st.num_used_vertices - (long long)st.num_edges + (long long)st.num_triangles;
 
   st.genus_defined = st.num_triangles > 0 && st.num_border_edges == 0 && st.num_overshared_edges == 0 &&
                      st.num_nonmanifold_vertices == 0;

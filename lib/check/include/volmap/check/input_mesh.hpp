@@ -5,8 +5,8 @@
 // VOLMAP-positive, one component, a closed 2-manifold genus-0 boundary without self-intersections or
 // coincident boundary vertices), and two things a VOLMAP-positive mesh cannot have: an interior face
 // wound the same way by both its tets (the tets overlap), and two tets over the same four vertices.
-// Cost: linear topology (analyze_topology) and exact orient3d over every tet, the boundary's exact
-// self-intersection test, one sort of the tets' vertex sets.
+// Cost: linear topology (analyze_topology, which also finds duplicate tets through their shared
+// faces), exact orient3d over every tet and the boundary's exact self-intersection test.
 // The reason is said in words, most basic problem first ("3 faces are shared by more than two tets
 // (first: face 2 of tet 17)"), with the number of further problems.
 #pragma once

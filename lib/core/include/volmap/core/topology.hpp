@@ -4,7 +4,8 @@
 // Conventions: half-face 4t+i is the face of tet t opposite local vertex i (outward winding
 // kTetFace[i] for VOLMAP-positive tets). A face (vertex triple) is a boundary face when exactly one
 // tet has it; faces held by more than two tets are non-manifold faces (neither boundary nor interior).
-// Tets repeating a vertex id are counted as degenerate and ignored by every other count.
+// Tets repeating a vertex id are counted as degenerate and ignored by every other count (duplicates
+// included).
 // The boundary surface is the set of boundary faces; its Euler characteristic is chi = V - E + F over
 // boundary vertices/edges/faces, its components are vertex-connected components, and its genus is
 // (2*components - chi)/2 (meaningful when the surface is a closed 2-manifold).
@@ -31,6 +32,10 @@ struct TopologyReport {
   std::size_t num_inconsistent_faces = 0;  // interior faces whose two half-faces have equal winding
   std::size_t num_nonmanifold_faces = 0;   // held by more than two tets
   std::size_t num_tet_components = 0;      // tets connected through shared faces
+  // Tets whose four vertices are those of a lower-numbered tet (k copies count k - 1), and the first
+  // such pair by the later tet (kInvalid when none): found through the shared faces.
+  std::size_t num_duplicate_tets = 0;
+  std::uint32_t example_duplicate_first = 0xFFFFFFFFu, example_duplicate_second = 0xFFFFFFFFu;
 
   std::size_t num_boundary_faces = 0;
   std::size_t num_boundary_vertices = 0;
