@@ -14,14 +14,23 @@ namespace {
 constexpr int kSlots = 256;
 constexpr std::size_t kPathBytes = 4096;
 
+// Constant-initialised (all zero, in .bss): a dynamic initialiser would touch all 256 pages of the
+// registry at the start of every tool.
 struct Slot {
   std::atomic<int> state{0};
-  char path[kPathBytes];
+  char path[kPathBytes] = {};
 };
 Slot g_slots[kSlots];
 
 std::atomic<int> g_commits_in_progress{0};
 std::atomic<int> g_deferred_signal{0};
+// What a handler is doing: 0 nothing, 1 deciding between deferring and dying, 2 dying (removing the
+// temporary files, then the default action). A handler announces itself before it looks at
+// g_commits_in_progress, and a CommitGuard counts itself before it looks at the state (both
+// sequentially consistent), so at least one sees the other: either the handler defers, or the
+// guard waits for its verdict and, when it is dying, never starts renaming files that are being
+// removed (the handler may run on another thread than the one committing).
+std::atomic<int> g_handler_state{0};
 
 static_assert(std::atomic<int>::is_always_lock_free, "signal-safe registry needs lock-free atomics");
 
@@ -37,10 +46,16 @@ static_assert(std::atomic<int>::is_always_lock_free, "signal-safe registry needs
 }
 
 extern "C" void on_terminating_signal(int sig) {
+  // Only one handler decides: a second signal while one is deciding or dying (on another thread, or
+  // nested: SA_NODEFER) leaves it to that one instead of resetting its state.
+  int idle = 0;
+  if (!g_handler_state.compare_exchange_strong(idle, 1)) return;
   if (g_commits_in_progress.load() > 0) {
     g_deferred_signal.store(sig);
+    g_handler_state.store(0);
     return;
   }
+  g_handler_state.store(2);
   die_of(sig);
 }
 
@@ -79,7 +94,14 @@ void install_temp_cleanup_on_signals() {
   }
 }
 
-CommitGuard::CommitGuard() { ++g_commits_in_progress; }
+CommitGuard::CommitGuard() {
+  ++g_commits_in_progress;
+  int state;
+  while ((state = g_handler_state.load()) == 1) {
+  }
+  if (state == 2)
+    for (;;) ::pause();  // the handler removes the outputs and ends the process
+}
 
 CommitGuard::~CommitGuard() {
   if (--g_commits_in_progress == 0)

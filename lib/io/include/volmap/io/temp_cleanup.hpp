@@ -23,7 +23,8 @@ void remove_registered_temp_files() noexcept;
 void install_temp_cleanup_on_signals();
 
 // While alive, the handlers above defer a signal instead of acting; the destructor acts on a deferred
-// signal (cleanup, then the default action).
+// signal (cleanup, then the default action). A guard made while a handler (on any thread) is already
+// removing the files and ending the process blocks until the process ends.
 class CommitGuard {
  public:
   CommitGuard();
