@@ -187,6 +187,7 @@ int main(int argc, char** argv) {
                        {"chord_faces_flipped", r.chord_faces_flipped},
                        {"chord_cone_patches", r.chord_cone_patches},
                        {"growth_budget_escalations", r.growth_budget_escalations},
+                       {"cone_search_widenings", r.cone_search_widenings},
                        {"cone_patches", r.cone_patches},
                        {"seconds", r.seconds},
                        {"stages", stages}};

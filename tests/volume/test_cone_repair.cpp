@@ -12,6 +12,7 @@
 #include <volmap/io/io.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/check/tetmesh_checks.hpp>
+#include <volmap/testing/generate.hpp>
 
 #include "map_test_meshes.hpp"
 #include "mesh_test_util.hpp"
@@ -28,6 +29,7 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <utility>
 #include <string>
 #include <tuple>
 #include <sys/wait.h>
@@ -72,11 +74,15 @@ void check_refinement(const volmap::TetMeshData& before, const std::vector<doubl
 // A Kuhn grid with its boundary flags and a target to displace (…0: the state before the repair),
 // and a fresh copy repaired by repair() (m, bnd, target: the state after).
 struct GridCase {
-  explicit GridCase(int n) : m0(map_test::kuhn_grid(n)), bnd0(map_test::grid_boundary_flags(n)), target0(m0.xyz) {}
-  volmap::ConeRepairResult repair(const volmap::ConeRepairOptions& options = {}) {
+  explicit GridCase(int n) : GridCase(map_test::kuhn_grid(n), map_test::grid_boundary_flags(n)) {}
+  GridCase(volmap::TetMeshData mesh, std::vector<std::uint8_t> boundary)
+      : m0(std::move(mesh)), bnd0(std::move(boundary)), target0(m0.xyz) {}
+  // Every shelling step is confirmed by the full sphere check (it throws on a disagreement).
+  volmap::ConeRepairResult repair(volmap::ConeRepairOptions options = {}) {
     m = m0;
     bnd = bnd0;
     target = target0;
+    options.verify_shelling = true;
     return volmap::cone_repair(m, bnd, target, options);
   }
   volmap::TetMeshData m0;
@@ -221,6 +227,7 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
     auto bnd2 = bnd0;
     auto target2 = target0;
     volmap::ConeRepairOptions o;
+    o.verify_shelling = true;
     if (variant == 0) o.stall_growth_steps = 0;  // no stall limit
     if (variant == 1) o.growth_lookahead = 1;    // plain most-violated-face growth
     const auto r2 = volmap::cone_repair(m2, bnd2, target2, o);
@@ -236,6 +243,33 @@ TEST_CASE("cone repair: scattered scrambled interior vertices are all repaired")
   }
   MESSAGE("scrambled: " << bad0 << " inverted in " << r.clusters << " clusters, " << r.patches << " patches, tets " << m0.num_tets()
                         << " -> " << m.num_tets());
+}
+
+TEST_CASE("cone repair: along a scrambled bar the growth takes shelling steps, each confirmed by the full check") {
+  // A 12×3×3 bar whose interior vertices are scrambled, most along the bar: regions grow along it
+  // one tet at a time, the case the shelling steps are for. GridCase::repair sets verify_shelling,
+  // so a step that left a non-ball would throw.
+  volmap::TetMeshData bar = volmap::generate_kuhn_grid(12, 3, 3);
+  std::vector<std::uint8_t> boundary(bar.num_vertices(), 0);
+  for (std::size_t v = 0; v < bar.num_vertices(); ++v) {
+    const double* p = &bar.xyz[3 * v];
+    boundary[v] = p[0] == 0 || p[0] == 12 || p[1] == 0 || p[1] == 3 || p[2] == 0 || p[2] == 3;
+  }
+  GridCase c(std::move(bar), std::move(boundary));
+  for (unsigned seed : {0u, 3u, 5u}) {
+    c.target0 = c.m0.xyz;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-0.6, 0.6);
+    for (std::size_t v = 0; v < c.m0.num_vertices(); ++v)
+      if (!c.bnd0[v])
+        for (int d = 0; d < 3; ++d) c.target0[3 * v + d] += u(rng) * (d == 0 ? 3 : 1);
+    REQUIRE(volmap::count_nonpositive(c.target0, c.m0.tets) > 0);
+    const auto r = c.repair();
+    INFO("seed " << seed);
+    CHECK(r.shelling_steps > 0);
+    CHECK(r.failed_clusters == 0);
+    check_refinement(c.m0, c.target0, c.bnd0, c.m, c.target, c.bnd);
+  }
 }
 
 TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged") {
@@ -260,13 +294,14 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     CHECK(target == target0);
     CHECK(bnd == bnd0);
   }
-  SUBCASE("region limit too small") {
+  SUBCASE("region limit too small; widened until the repair succeeds") {
     const int n = 4;
     GridCase c(n);
     const int v = grid_id(n, 2, 2, 2);
     for (int i = 0; i < 3; ++i) c.target0[3 * v + i] += 0.3;
     volmap::ConeRepairOptions o;
     o.max_region_tets = 4;
+    o.search_escalations = 0;
     const auto r = c.repair(o);
     const auto& [m0, target0, m, target] = std::tie(c.m0, c.target0, c.m, c.target);
     CHECK(r.failed_clusters > 0);
@@ -278,6 +313,16 @@ TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged
     CHECK(r.attempts == r.failures.region_limit);
     CHECK(r.failures.last_no_target + r.failures.last_no_source <= r.failures.region_limit);
     CHECK(r.failures.reinsertion + r.failures.not_positive + r.failures.face_mismatch + r.failures.budget == 0);
+
+    // The same cluster: a round that repairs nothing is repeated with the limits ×4 (4, 16, 64 tets).
+    o.search_escalations = 3;
+    const auto w = c.repair(o);
+    CHECK(w.search_escalations >= 1);
+    CHECK(w.failed_clusters == 0);
+    CHECK(w.patches >= 1);
+    CHECK(w.max_region > 4);
+    CHECK(w.failures.region_limit >= 1);  // the attempts before the widening
+    check_refinement(m0, target0, c.bnd0, m, target, c.bnd);
   }
   SUBCASE("tet budget too small") {
     const int n = 4;

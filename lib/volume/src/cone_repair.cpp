@@ -4,12 +4,15 @@
 // Rules of the region growth (§7 "Growing R"): steepest ascent on the kernel-LP slack over the tets
 // behind the most violated ∂R faces, stopped after ConeRepairOptions::stall_growth_steps steps
 // without progress; then plain and 2-candidate growth; then aimed growth towards fixed target points
-// near the cluster's ∂M faces. A region whose patch would exceed max_added_tets absorbs free ∂R
+// near the cluster's ∂M faces. A step that adds one tet along a disk of a ball skips the sphere check
+// of ∂R (§7 "Shelling steps"); a round that repairs nothing is repeated with every growth limit
+// widened (§7 "Widening the search"). A region whose patch would exceed max_added_tets absorbs free ∂R
 // vertices (whole stars) while it stays a ball with both kernels, until the patch fits (§7 "Fitting
 // the budget"). Every exact sign is fp_.orient3d (one environment scope per call).
 #include <volmap/volume/cone_repair.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/core/shelling.hpp>
 #include <volmap/core/time_budget.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/volume/kernel_lp.hpp>
@@ -94,7 +97,11 @@ class ConeRepairer {
         res.failed_clusters = find_clusters().size();
         break;
       }
-      if (applied == 0) break;
+      if (applied == 0) {
+        if (!widen_search()) break;
+        --round;  // the same clusters again with the wider search (bounded: search_escalations)
+        continue;
+      }
       if (round + 1 == rounds) res.failed_clusters = find_clusters().size();
     }
     res.tets_after = mesh_.num_tets();
@@ -103,6 +110,16 @@ class ConeRepairer {
   }
 
  private:
+  // After a round that repaired nothing: every growth limit times search_widening (the growth is
+  // deterministic, so a retry with the same limits fails the same way); false when no escalation is
+  // left.
+  bool widen_search() {
+    if (res_.search_escalations >= std::size_t(std::max(0, opt_.search_escalations))) return false;
+    ++res_.search_escalations;
+    widen_growth_limits(opt_);
+    return true;
+  }
+
   const FpEnvironmentScope fp_;
   TetMesh& mesh_;
   PositionProperty& tx_;
@@ -489,6 +506,7 @@ class ConeRepairer {
     GrowthRun run{count_failure};
     double best_progress = -std::numeric_limits<double>::infinity();
     int best_step = 0;
+    bool shelled = false;  // the last step added one tet along a disk of a ball: still a ball
     for (int step = 0; step < opt_.max_growth_steps; ++step) {
       if (budget_.expired()) return growth_failed(run, fail.time_limit);
       ++res_.growth_steps;
@@ -499,9 +517,15 @@ class ConeRepairer {
         if (!grow_towards_aim(aim, &added)) return growth_failed(run, fail.no_growth_face);
         if (added > 0) continue;
       }
-      bool is_ball = false;
-      if (grow_towards_ball(&is_ball) > 0) continue;
-      if (!is_ball) return growth_failed(run, fail.not_ball);
+      bool is_ball = shelled && !aim;
+      shelled = false;
+      if (is_ball) {
+        ++res_.shelling_steps;
+        assert_still_ball();
+      } else {
+        if (grow_towards_ball(&is_ball) > 0) continue;
+        if (!is_ball) return growth_failed(run, fail.not_ball);
+      }
       face_triangles(tri_t, tri_s);
       if (aim) {  // ∂R a sphere seen from aim: the source kernel decides
         run.last_fail = 2;
@@ -525,7 +549,9 @@ class ConeRepairer {
       run.last_fail = k.ok_t ? 2 : 1;
       const std::uint32_t grow = choose_growth_tet(k, p, q, lookahead, tri_t, tri_s);
       if (grow == kNone) return growth_failed(run, fail.no_growth_face);
-      add_with_merge(grow);
+      const bool along_disk = attaches_along_disk(
+          mesh_, TetId(grow), [&](TetId u) { return in_region_[u.idx()] == region_stamp_; }, star_);
+      shelled = add_with_merge(grow) == 1 && along_disk;
     }
     return growth_failed(run, fail.growth_steps);
   }
@@ -654,6 +680,12 @@ class ConeRepairer {
     const long long reinserted = std::max(0LL, (long long)interior.size() - 1);
     r.growth_bound = (long long)faces_.size() + 3 * reinserted - (long long)region_.size();
     return r;
+  }
+
+  // With ConeRepairOptions::verify_shelling, each shelling step is confirmed by the full check.
+  void assert_still_ball() const {
+    if (opt_.verify_shelling && !region_is_ball())
+      throw Error(ErrorKind::Failed, "cone repair: a shelling step left a region that is not a ball");
   }
 
   // ∂R (faces_) is a closed 2-manifold sphere (a pure check; grow_towards_ball repairs).
@@ -971,6 +1003,15 @@ class ConeRepairer {
 };
 
 }  // namespace
+
+void widen_growth_limits(ConeRepairOptions& options, int times) {
+  const int f = std::max(2, options.search_widening);
+  for (int k = 0; k < times; ++k) {
+    options.stall_growth_steps *= f;
+    options.max_growth_steps *= f;
+    options.max_region_tets *= std::size_t(f);
+  }
+}
 
 ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
                              const ConeRepairOptions& options) {

@@ -172,14 +172,26 @@ class VolumeMapper {
   }
 
   // B1 cone repair of every cluster, within what is left of the growth budget and half the time left.
-  ConeRepairResult cone_repair_stage(const std::string& name) {
+  // Early attempts and the first repair rounds are cheap tries; once a repair round has stalled
+  // (repair and local FFM both without progress), the repair widens the search when a round repairs
+  // nothing (ConeRepairOptions::search_escalations). A widening persists: later rounds start from the
+  // widest search used so far.
+  ConeRepairResult cone_repair_stage(const std::string& name, bool widen_search) {
     ConeRepairOptions co;
+    if (!widen_search) {
+      co.search_escalations = 0;
+    } else {
+      const int widened = int(result_.cone_search_widenings);  // only the repair phase widens
+      widen_growth_limits(co, widened);
+      co.search_escalations = std::max(0, co.search_escalations - widened);
+    }
     const long long used = (long long)state_.source.num_tets() - (long long)state_.input_tets;
     co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget_ - used));
     co.time_limit_seconds = budget_->option_seconds(0.5);
     ConeRepairResult cr;
     judged_stage(name, [&] { cr = run_cone_repair(state_, co); }, "cone-repair");
     if (!result_.stages.back().failure.empty()) cr = ConeRepairResult{};  // undone
+    result_.cone_search_widenings += cr.search_escalations;
     result_.cone_patches += cr.patches;
     if (cr.patches > 0) result_.refined = true;
     return cr;
@@ -200,7 +212,7 @@ class VolumeMapper {
   // cluster untouched when it fails); not again at an unchanged count after an attempt that stalled.
   void try_early_b1(const std::string& after) {
     if (bad_ == 0 || !b1_rounds_ || bad_ > options_.early_repair_max_bad || bad_ >= early_b1_stalled_at_) return;
-    const ConeRepairResult cr = cone_repair_stage("cone-repair-after-" + after);
+    const ConeRepairResult cr = cone_repair_stage("cone-repair-after-" + after, false);
     if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at_ = bad_;
   }
 
@@ -272,7 +284,7 @@ class VolumeMapper {
     bool global_tried = false, tlc_retried = false;
     for (int round = 0; round < 8 && bad_ > 0 && !budget_->expired(); ++round) {
       const std::size_t bad_before = bad_;
-      const ConeRepairResult cr = cone_repair_stage("cone-repair");
+      const ConeRepairResult cr = cone_repair_stage("cone-repair", tlc_retried);
       if (escalate_growth_budget(cr)) {  // the same round again with the larger budget (bounded: the cap)
         --round;
         continue;

@@ -40,6 +40,14 @@ struct ConeRepairOptions {
   // just inside that face, then near its edges inside both it and the ∂M face across the edge
   // (exact visibility), see docs/mapping.md §7.
   bool aimed_growth = true;
+  // When a round repairs no cluster, the limits above (stall, growth steps, region size) are
+  // multiplied by search_widening and the round is repeated, at most search_escalations times: the
+  // first ball with both kernels can lie far beyond the stall limit (docs/mapping.md §7).
+  int search_escalations = 2;
+  int search_widening = 4;
+  // A growth step that adds one tet along a disk of a ball skips the sphere check of ∂R (a shelling
+  // step, docs/mapping.md §7); when set, the check runs anyway and a disagreement throws (tests).
+  bool verify_shelling = false;
 };
 
 struct ConeRepairResult {
@@ -64,9 +72,15 @@ struct ConeRepairResult {
     std::size_t time_limit = 0;         // time_limit_seconds reached during growth
   } failures;
   std::size_t attempts = 0, growth_steps = 0, lp_solves = 0;  // work counters
+  std::size_t shelling_steps = 0;     // growth steps that kept a ball without the sphere check
+  std::size_t search_escalations = 0; // rounds repeated with wider growth limits
   std::size_t absorbed_vertices = 0;  // ∂R vertices absorbed to fit patches into max_added_tets
   double seconds_growth = 0, seconds_patch = 0, seconds_setup = 0;
 };
+
+// Multiplies the growth limits of `options` (stall, growth steps, region size) by search_widening,
+// `times` times: the search of a widened round (docs/mapping.md §7 "Widening the search").
+void widen_growth_limits(ConeRepairOptions& options, int times = 1);
 
 // Repairs the clusters of non-positive target tets in place: the mesh is refined, new vertices get
 // their target here and the locked property's default (0). A cluster whose region cannot be made a

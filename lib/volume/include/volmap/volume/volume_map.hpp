@@ -108,6 +108,7 @@ struct VolumeMapResult {
   std::size_t chord_edges_removed = 0, chord_faces_flipped = 0;  // B0 flips (no new vertex)
   std::size_t chord_cone_patches = 0;                              // B0 cone patches (one new vertex each)
   std::size_t growth_budget_escalations = 0;                       // times B1's budget grew (max_growth_last_resort)
+  std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
   std::string certified_by;         // stage that produced the certified map
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
