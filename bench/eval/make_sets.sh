@@ -21,9 +21,11 @@
 #               mesh and its sphere map form group G2 (logs/sphere_<name>.json)
 #   tetmeshes   the 8 tet meshes of shared/data/tetmeshes, flipped to the VOLMAP orientation by
 #               `volmap-tetmesh-check --fix`, then mapped to the six domains by volmap-dataset
-#   maps        no layout: maps.tsv lists (name, object mesh, initial map mesh) for
-#               `volmap-map <object> - out --initial <parameter>`; the TLC input is converted to two
-#               .mesh files; the expansion_cones .ovm inputs are listed as not run (no .ovm reader)
+#   maps        no layout: maps.tsv lists (name, object mesh, parameter): an initial map mesh for
+#               `volmap-map <object> - out --initial <parameter>`, or for the expansion_cones .ovm
+#               inputs (flipped to the VOLMAP orientation by `volmap-tetmesh-check --fix`) their
+#               boundary map (.txt) for `volmap-map <object> <parameter> out`; the TLC input is
+#               converted to two .mesh files
 # Published maps passed `volmap-surface-map-check --domain <dom>` (volmap-dataset's own check). A
 # domain whose map fails is dropped and recorded in the JSON (failed_domains), the mesh it failed on
 # kept as G<k>_failed/<name>_<dom>.mesh, so each set's case count is (inputs x 6) minus the
@@ -166,9 +168,13 @@ make_maps() {
     "$DATA/maps/lim_benchmark/armadillo-598-init.vtk" >> "$set_dir/maps.tsv"
   tlc_to_medit "$DATA/maps/tlc/input" "$set_dir/tlc/rest.mesh" "$set_dir/tlc/init.mesh"
   printf 'tlc_cube\t%s\t%s\t\n' "$set_dir/tlc/rest.mesh" "$set_dir/tlc/init.mesh" >> "$set_dir/maps.tsv"
+  mkdir -p "$set_dir/expansion_cones"
   for m in "$DATA"/maps/expansion_cones/*_domain.ovm; do
     name=$(basename "$m" _domain.ovm)
-    printf 'expansion_cones_%s\t%s\t%s\tnot run: no .ovm reader\n' "$name" "$m" \
+    # OpenVolumeMesh orders tets the other way: flipped to the VOLMAP convention first.
+    "$BIN/volmap-tetmesh-check" "$m" --fix "$set_dir/expansion_cones/$name.mesh" --json \
+      > "$set_dir/expansion_cones/$name.fix.json" || true
+    printf 'expansion_cones_%s\t%s\t%s\t\n' "$name" "$set_dir/expansion_cones/$name.mesh" \
       "$(ls "$DATA"/maps/expansion_cones/"${name}"_*_boundary.txt)" >> "$set_dir/maps.tsv"
   done
 }

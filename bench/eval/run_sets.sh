@@ -18,7 +18,8 @@
 #   3. `volmap-run table`: <results>/<set>/table.md;
 #   4. (before 2) each domain's surface map alone on the unrefined mesh: surface_standalone.jsonl.
 # The maps set runs `volmap-map <object> - out.mesh --initial <parameter> --refined-input r.mesh
-# --threads 1 --time-limit $TIME_LIMIT --json` per line of maps.tsv and re-checks with
+# --threads 1 --time-limit $TIME_LIMIT --json` per line of maps.tsv (with a .txt parameter, a
+# boundary map: `volmap-map <object> <parameter> out.mesh ...`) and re-checks with
 # volmap-map-check --absolute: <results>/maps/results.jsonl.
 # The load average is logged every 5 minutes to <results>/<set>/load.log (the machine is shared:
 # time-limited runs depend on it). Then bench/eval/summarise.py <sets> <results> writes the summary.
@@ -83,7 +84,7 @@ print(json.dumps({"group": sys.argv[1], "name": sys.argv[2], "domain": sys.argv[
 }
 
 run_maps() {  # <results dir>
-  local out=$1 name object parameter note work rc check
+  local out=$1 name object parameter note work rc check boundary initial
   mkdir -p "$out/cases"
   touch "$out/results.jsonl"
   while IFS=$'\t' read -r name object parameter note; do
@@ -96,8 +97,10 @@ run_maps() {  # <results dir>
     check="{}"
     if [ -z "$note" ]; then
       rc=0
-      /usr/bin/time -f '%e %U %S' -o "$work/time.txt" timeout "$TIMEOUT" "$BIN/volmap-map" "$object" - "$work/out.mesh" \
-        --initial "$parameter" --refined-input "$work/refined.mesh" --threads 1 --time-limit "$TIME_LIMIT" --json \
+      boundary=- initial=(--initial "$parameter")
+      if [[ $parameter == *.txt ]]; then boundary=$parameter initial=(); fi
+      /usr/bin/time -f '%e %U %S' -o "$work/time.txt" timeout "$TIMEOUT" "$BIN/volmap-map" "$object" "$boundary" "$work/out.mesh" \
+        "${initial[@]}" --refined-input "$work/refined.mesh" --threads 1 --time-limit "$TIME_LIMIT" --json \
         > "$work/map.json" 2> "$work/map.err" || rc=$?
       if [ -f "$work/out.mesh" ]; then
         local src=$object
