@@ -32,10 +32,13 @@ namespace {
 
 constexpr int kMaxJobs = 256;
 std::atomic<int> g_child_pids[kMaxJobs];
+std::atomic<bool> g_stop_requested{false};
 
-// On SIGINT/SIGTERM: kill the running candidates' process groups, then leave. Results already
-// appended stay; --resume continues from there.
+// On SIGINT/SIGTERM: announce the stop, kill the running candidates' process groups, then leave.
+// Results already appended stay; a case whose candidate the kill ends is not recorded (the runner
+// checks the announcement first), so --resume redoes it.
 extern "C" void on_interrupt(int sig) {
+  g_stop_requested.store(true);
   for (auto& pid : g_child_pids) {
     const int p = pid.load();
     if (p > 0) kill(-p, SIGKILL);
@@ -206,6 +209,7 @@ int main(int argc, char** argv) {
       std::signal(SIGINT, on_interrupt);
       std::signal(SIGTERM, on_interrupt);
       const auto record = volmap::run_case(*it, volmap::resolve_method(method, options.tools_dir), options, &g_child_pids[0]);
+      if (g_stop_requested.load()) for (;;) ::pause();  // the handler ends the process
       const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
       fs::create_directories(path.parent_path());
       volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
@@ -227,6 +231,7 @@ int main(int argc, char** argv) {
     options.timeout_s = timeout;
     options.resume = resume;
     options.keep_outputs = keep;
+    options.stop_requested = &g_stop_requested;
     const auto spec = volmap::resolve_method(method, options.tools_dir, label, volmap::split_arguments(method_args));
 
     std::signal(SIGINT, on_interrupt);
@@ -253,6 +258,7 @@ int main(int argc, char** argv) {
       }
     };
     const auto records = volmap::run_benchmark(cases, spec, options, progress, g_child_pids);
+    if (g_stop_requested.load()) for (;;) ::pause();  // the handler ends the process
     // Totals over everything recorded for this label (including resumed cases).
     std::size_t total = 0, certified = 0;
     for (const auto& r : volmap::read_results((fs::path(out) / "results.jsonl").string()))

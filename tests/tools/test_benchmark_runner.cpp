@@ -11,9 +11,12 @@
 #include "support/process.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <thread>
 #include <csignal>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -156,6 +159,37 @@ TEST_CASE("run_benchmark records crashing and hanging candidates, appends, resum
   CHECK(html.find("http://") == html.find("http://www.w3.org/2000/svg"));  // only the SVG namespace
   CHECK(html.find("https://") == std::string::npos);
   CHECK(html.find("<script src") == std::string::npos);
+  fs::remove_all(root);
+}
+
+TEST_CASE("a stop (volmap-run's signal handler) records no case it cut short and starts none") {
+  REQUIRE_BUILT_TOOL(check_tool, "volmap-map-check");
+  const auto root = fresh_dir("stop");
+  for (const char* n : {"a", "b", "c"}) volmap_test::write_cube_case(root / "data", "G1", n, "cube");
+  const auto candidate = root / "candidate.sh";
+  volmap_test::write_file(candidate, "#!/bin/sh\nsleep 30\ncp \"$1\" \"$3\"\n", true);
+  std::atomic<bool> stop{false};
+  std::atomic<int> child_pids[1];
+  child_pids[0] = 0;
+  volmap::RunOptions options;
+  options.out_dir = (root / "out").string();
+  options.tools_dir = check_tool.parent_path().string();
+  options.stop_requested = &stop;
+  const auto cases = volmap::discover_cases((root / "data").string());
+  REQUIRE(cases.size() == 3);
+  // Plays the handler without ending the process: announce, then kill the running candidate. Before
+  // the announcement existed, the killed case was appended as a failure ("killed by signal 9"), and
+  // --resume then skipped it.
+  std::thread handler([&] {
+    while (child_pids[0].load() <= 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    stop.store(true);
+    ::kill(-child_pids[0].load(), SIGKILL);
+  });
+  const auto records =
+      volmap::run_benchmark(cases, volmap::resolve_method(candidate.string(), options.tools_dir), options, {}, child_pids);
+  handler.join();
+  CHECK(records.empty());
+  CHECK(volmap::read_results((root / "out" / "results.jsonl").string()).empty());
   fs::remove_all(root);
 }
 

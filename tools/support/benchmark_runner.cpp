@@ -395,11 +395,13 @@ std::vector<CaseRecord> run_benchmark(const std::vector<BenchmarkCase>& cases, c
   std::mutex mutex;
   std::atomic<std::size_t> next{0};
   const int jobs = std::max(1, options.jobs);
+  auto stopped = [&] { return options.stop_requested && options.stop_requested->load(); };
   auto worker = [&](int slot) {
     for (;;) {
       const std::size_t i = next++;
-      if (i >= todo.size()) return;
+      if (i >= todo.size() || stopped()) return;
       CaseRecord r = run_case(*todo[i], method, options, child_pids ? &child_pids[slot] : nullptr);
+      if (stopped()) return;
       std::lock_guard<std::mutex> lock(mutex);
       append_line_atomically(results, record_to_json_line(r));
       records.push_back(std::move(r));

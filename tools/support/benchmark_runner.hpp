@@ -76,6 +76,10 @@ struct RunOptions {
   double timeout_s = 0;       // per candidate run; 0 = none
   bool resume = false;        // skip cases already in results.jsonl for this label
   bool keep_outputs = false;  // keep the written meshes (default: only logs and JSON stay)
+  // Set by a signal handler before it kills the running candidates: once it is set no case starts,
+  // and a case that ends is not recorded (the stop cut it short, not its own failure), so --resume
+  // redoes it.
+  const std::atomic<bool>* stop_requested = nullptr;
 };
 
 struct RunProgress {
