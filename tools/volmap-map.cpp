@@ -43,7 +43,7 @@
 int main(int argc, char** argv) {
   volmap_tools::reuse_freed_memory();
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
-  std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm";
+  std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm", start = "fewest";
   double max_growth = 0.05, max_growth_cap = volmap::VolumeMapOptions{}.max_growth_last_resort, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
   bool no_refine = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-growth-last-resort", max_growth_cap,
                  "when patches within --max-growth cannot repair the last bad tets, the budget grows up to this fraction (default 0.5; = --max-growth: never)")
       ->check(finite_non_negative());
+  app.add_option("--start", start, "starting map: tutte (Tutte 3D), radial (Tutte inside the boundary image projected onto a sphere about a kernel point, mapped back cone by cone), or fewest (default: Tutte, and on a non-convex boundary image also radial, keeping the one with fewer bad tets)")
+      ->check(CLI::IsMember({"tutte", "radial", "fewest"}));
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
@@ -123,6 +125,7 @@ int main(int argc, char** argv) {
     opt.time_limit_seconds = time_limit;
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
+    opt.start = start == "tutte" ? volmap::StartMap::Tutte : start == "radial" ? volmap::StartMap::Radial : volmap::StartMap::Fewest;
     opt.quality_relative_decrease = quality_tol;
     opt.tlc_time_share = tlc_share;
     opt.ffm_max_lbfgs_iterations = ffm_inner;

@@ -47,6 +47,15 @@ void place_by_tutte(MapState& s) {
   });
 }
 
+RadialStartResult place_by_radial_tutte(MapState& s) {
+  return on_flat_target(s, [&](std::vector<double>& x) { return place_by_radial_tutte(s.source, s.locked.data(), x); });
+}
+
+bool boundary_image_is_convex(const MapState& s) {
+  s.require_compact();
+  return boundary_image_is_convex(s.source, s.target_xyz());
+}
+
 void place_new_vertices_by_laplacian(MapState& s, std::size_t keep) {
   s.require_compact();
   if (s.source.num_vertices() <= keep) return;

@@ -129,15 +129,25 @@ class VolumeMapper {
     result_.refined = cs.vertices_added > 0 || cs.edges_removed > 0 || cs.faces_flipped > 0;
   }
 
-  // Tutte 3D, or the given initial map (chord-split vertices placed by a local Laplacian).
+  // The given initial map (chord-split vertices placed by a local Laplacian), or the start of
+  // options_.start: Tutte 3D, the radial start, or both when the boundary image is not convex (the
+  // second is undone when it leaves more non-positive tets; on a convex image Tutte already keeps
+  // every vertex inside). The TLC baseline always starts from Tutte 3D, as published.
   void start_map() {
-    const bool initial = !options_.initial_xyz.empty();
-    judged_stage(initial ? "initial" : "tutte3d", [&] {
-      if (initial)
-        place_new_vertices_by_laplacian(state_, state_.input_vertices);
-      else
-        place_by_tutte(state_);
-    });
+    if (!options_.initial_xyz.empty()) {
+      judged_stage("initial", [&] { place_new_vertices_by_laplacian(state_, state_.input_vertices); });
+      return;
+    }
+    const StartMap start = cascade() ? options_.start : StartMap::Tutte;
+    if (start == StartMap::Radial) {
+      judged_stage("radial-tutte", [&] {
+        if (!place_by_radial_tutte(state_).placed) place_by_tutte(state_);
+      });
+      return;
+    }
+    judged_stage("tutte3d", [&] { place_by_tutte(state_); });
+    if (start == StartMap::Fewest && bad_ > 0 && !boundary_image_is_convex(state_))
+      judged_stage("radial-tutte", [&] { place_by_radial_tutte(state_); });
   }
 
   // ---- stages used by several phases ----------------------------------------------------------

@@ -14,6 +14,7 @@
 #include <volmap/volume/kernel_descent.hpp>
 #include <volmap/volume/link_kernel.hpp>
 #include <volmap/volume/map_state.hpp>
+#include <volmap/volume/radial_start.hpp>
 #include <volmap/volume/tlc.hpp>
 
 namespace volmap {
@@ -27,6 +28,10 @@ std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& s
 ChordSplitResult remove_blocking_chords(MapState& state, const FeasibilityReport& report);
 // §2: every unlocked vertex at the uniform-Laplacian (Tutte) solution for the locked ones.
 void place_by_tutte(MapState& state);
+// §2 the radial start (radial_start.hpp) on the state's target; not placed: the target is untouched.
+RadialStartResult place_by_radial_tutte(MapState& state);
+// The boundary image (the locked targets) has no reflex edge beyond rounding (radial_start.hpp).
+bool boundary_image_is_convex(const MapState& state);
 // The same for the vertices after the first `keep` only (the rest keep their target): vertices made
 // by B0 on a given initial map start at the average of their neighbours.
 void place_new_vertices_by_laplacian(MapState& state, std::size_t keep);

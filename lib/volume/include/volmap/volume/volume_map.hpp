@@ -30,6 +30,7 @@
 namespace volmap {
 
 enum class MapMethod { Ffm, Tlc };
+enum class StartMap { Tutte, Radial, Fewest };
 
 struct VolumeMapOptions {
   MapMethod method = MapMethod::Ffm;
@@ -82,6 +83,11 @@ struct VolumeMapOptions {
   // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
   // (cascade only).
   bool kernel_descent = true;
+  // Cascade without initial_xyz: the starting map (§2). Tutte: Tutte 3D. Radial: the radial start
+  // (radial_start.hpp; Tutte 3D when the boundary image has no verified strict kernel point).
+  // Fewest: Tutte, and when the boundary image is not convex also the radial start; the one with
+  // fewer exactly non-positive tets is kept (Tutte on a tie).
+  StartMap start = StartMap::Fewest;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
