@@ -225,9 +225,11 @@ TEST_CASE("generated meshes map onto cross7 and L3 and their volume maps are cer
   // An L-shaped grid (3 grid steps per cell) and plain cubes.
   // The cone repair's LP apex for this grid region lies on a grid plane through interior vertices of
   // R; the patch is built only with the apex moved off it (before that, a global FFM stage had to run
-  // first and the case took seconds).
+  // first and the case took seconds). From the radial start (the cross is not convex) a local FFM
+  // stage runs on the last few tets; no global one.
   const VolumeMapResult cross = map_and_certify(generate_kuhn_unit_cube(8), polycube_domain("cross7"), "8x8x8 cube onto cross7");
-  for (const auto& stage : cross.stages) CHECK_MESSAGE(stage.name.rfind("ffm", 0) != 0, stage.name);
+  for (const auto& stage : cross.stages)  // no global FFM stage (local FFM on a few tets may run)
+    CHECK_MESSAGE((stage.name != "ffm-regular" && stage.name != "ffm-rest" && stage.name != "ffm-after-repair"), stage.name);
   const TetMeshData l = generate_kuhn_grid(6, 6, 3, [](std::size_t i, std::size_t j, std::size_t) { return i < 3 || j < 3; });
   map_and_certify(l, polycube_domain("L3"), "L-shaped grid onto L3");
   map_and_certify(generate_kuhn_unit_cube(6), polycube_domain("L3"), "6x6x6 cube onto L3");
