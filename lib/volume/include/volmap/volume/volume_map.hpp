@@ -86,7 +86,8 @@ struct VolumeMapOptions {
   // Cascade without initial_xyz: the starting map (§2). Tutte: Tutte 3D. Radial: the radial start
   // (radial_start.hpp; Tutte 3D when the boundary image has no verified strict kernel point).
   // Fewest: Tutte, and when the boundary image is not convex also the radial start; the one with
-  // fewer exactly non-positive tets is kept (Tutte on a tie).
+  // fewer exactly non-positive tets is kept (the radial start on a tie: the judge keeps a stage that
+  // does not make the count worse).
   StartMap start = StartMap::Fewest;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
