@@ -47,6 +47,13 @@ extern "C" void on_interrupt(int sig) {
   _exit(128 + sig);
 }
 
+// After run_case / run_benchmark return: when a stop was announced, the handler is ending the
+// process; nothing may be written or printed meanwhile.
+void wait_for_a_stop_to_end_the_process() {
+  if (g_stop_requested.load())
+    for (;;) ::pause();
+}
+
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
   std::string cur;
@@ -209,7 +216,7 @@ int main(int argc, char** argv) {
       std::signal(SIGINT, on_interrupt);
       std::signal(SIGTERM, on_interrupt);
       const auto record = volmap::run_case(*it, volmap::resolve_method(method, options.tools_dir), options, &g_child_pids[0]);
-      if (g_stop_requested.load()) for (;;) ::pause();  // the handler ends the process
+      wait_for_a_stop_to_end_the_process();
       const auto path = fs::path(out) / "records" / it->group / (it->name + "_" + it->domain + ".json");
       fs::create_directories(path.parent_path());
       volmap::write_text_atomically(path.string(), volmap::record_to_json_line(record) + "\n");
@@ -258,7 +265,7 @@ int main(int argc, char** argv) {
       }
     };
     const auto records = volmap::run_benchmark(cases, spec, options, progress, g_child_pids);
-    if (g_stop_requested.load()) for (;;) ::pause();  // the handler ends the process
+    wait_for_a_stop_to_end_the_process();
     // Totals over everything recorded for this label (including resumed cases).
     std::size_t total = 0, certified = 0;
     for (const auto& r : volmap::read_results((fs::path(out) / "results.jsonl").string()))

@@ -30,11 +30,11 @@ double det3(const double* a, const double* b, const double* c) {
 
 // The boundary surface as triangles of vertex ids (outward order) with their neighbours across the
 // edge opposite each corner.
-struct BoundarySurface {
+struct BoundaryTriangles {
   std::vector<std::array<std::uint32_t, 3>> tri;
   std::vector<std::array<std::uint32_t, 3>> across;  // across[f][i]: the triangle across the edge opposite corner i
 
-  explicit BoundarySurface(const TetMesh& mesh) {
+  explicit BoundaryTriangles(const TetMesh& mesh) {
     for (HalfFaceId h : mesh.boundary_half_faces()) {
       const auto v = mesh.half_face_vertices(h);
       tri.push_back({v[0].idx(), v[1].idx(), v[2].idx()});
@@ -60,7 +60,7 @@ struct BoundarySurface {
 };
 
 // Cone coordinates of u in triangle f of the sphere picture s; false when the cone is degenerate.
-bool cone_coordinates(const BoundarySurface& b, const std::vector<double>& s, std::uint32_t f, const double* u, double* w) {
+bool cone_coordinates(const BoundaryTriangles& b, const std::vector<double>& s, std::uint32_t f, const double* u, double* w) {
   const double* a = &s[3 * std::size_t(b.tri[f][0])];
   const double* bb = &s[3 * std::size_t(b.tri[f][1])];
   const double* c = &s[3 * std::size_t(b.tri[f][2])];
@@ -73,7 +73,7 @@ bool cone_coordinates(const BoundarySurface& b, const std::vector<double>& s, st
 }
 
 // The triangle whose cone holds u (coordinates in w), walking from `start`.
-std::uint32_t locate(const BoundarySurface& b, const std::vector<double>& s, std::uint32_t start, const double* u, double* w,
+std::uint32_t locate(const BoundaryTriangles& b, const std::vector<double>& s, std::uint32_t start, const double* u, double* w,
                      std::size_t max_steps, bool* searched) {
   *searched = false;
   std::uint32_t f = start;
@@ -111,7 +111,7 @@ bool locked_are_the_boundary(const TetMesh& mesh, const std::vector<std::uint8_t
 }  // namespace
 
 bool boundary_image_is_convex(const TetMesh& mesh, const std::vector<double>& x) {
-  const BoundarySurface surface(mesh);
+  const BoundaryTriangles surface(mesh);
   auto at = [&](std::uint32_t v) { return &x[3 * std::size_t(v)]; };
   for (std::uint32_t f = 0; f < surface.tri.size(); ++f)
     for (int i = 0; i < 3; ++i) {
@@ -141,7 +141,7 @@ RadialStartResult place_by_radial_tutte(const TetMesh& mesh, const std::vector<s
   RadialStartResult r;
   const std::size_t nv = mesh.num_vertices();
   if (x.size() != 3 * nv || !locked_are_the_boundary(mesh, locked)) return r;
-  const BoundarySurface surface(mesh);
+  const BoundaryTriangles surface(mesh);
   if (surface.tri.empty()) return r;
 
   // c: a strict kernel point of the boundary image, exactly verified.
