@@ -14,6 +14,7 @@
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/map_state.hpp>
 #include <volmap/volume/volume_map.hpp>
+#include <volmap/predicates.hpp>
 
 #include "map_test_meshes.hpp"
 #include "mesh_test_util.hpp"
@@ -256,4 +257,43 @@ TEST_CASE("B0 cone patch: a cube coned from a corner (no interior vertex) onto a
   CHECK(r.certified);
   CHECK(r.chord_cone_patches == b0.cone_patches);
   CHECK(r.source.num_tets() < old_b0.tets_after);
+}
+
+TEST_CASE("B0: a fixed inverted tet without a blocking chord — one 2-3 flip towards the free vertex across it, then a certified map") {
+  // Source: a tetrahedron (p0,p1,p2,p3) coned from its interior point e, and the tet (p0,p1,p2,d) on
+  // its face p0p1p2, d below. Target: d lifted above that face (a dent), the rest as in the source.
+  // (p0,p1,p2,d) is then fixed and inverted, yet no chord blocks: its interior face p0p1p2 has the
+  // free e across. The flip of p0p1p2 leaves the cone from e over the six faces of ∂M, which maps
+  // validly with e in the dented polyhedron's kernel (near p3).
+  volmap::TetMeshData m;
+  m.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3, 0.3, 1, 0.3, 0.3, -0.5, 0.325, 0.325, 0.25};
+  const std::uint32_t e = 5, d = 4;
+  const std::vector<std::array<std::uint32_t, 4>> tets = {{e, 0, 1, 3}, {e, 1, 2, 3}, {e, 2, 0, 3}, {e, 0, 1, 2}, {d, 0, 1, 2}};
+  for (auto t : tets) {
+    if (volmap::orient3d(&m.xyz[3 * t[0]], &m.xyz[3 * t[1]], &m.xyz[3 * t[2]], &m.xyz[3 * t[3]]) < 0) std::swap(t[0], t[1]);
+    m.tets.insert(m.tets.end(), t.begin(), t.end());
+  }
+  std::vector<double> target = m.xyz;
+  target[3 * d + 2] = 0.2;  // d -> (0.3, 0.3, 0.2), above p0p1p2
+  const auto map = map_test::boundary_map_of({1, 1, 1, 1, 1, 0}, target);
+  volmap::MapState state(m, map);
+  const auto report = volmap::analyze_feasibility(state);
+  REQUIRE(report.fixed_nonpositive_tets.size() == 1);
+  CHECK(report.blocking_chord_edges.empty());
+  CHECK(report.blocking_chord_faces.empty());
+  CHECK(report.boundary_volume_sign > 0);
+
+  const auto boundary = mesh_test::oriented_boundary(state.source);
+  const auto b0 = volmap::remove_blocking_chords(state, report);
+  CHECK(b0.faces_flipped == 1);
+  CHECK(b0.vertices_added == 0);
+  CHECK(b0.tets_after == 6);
+  CHECK(state.source.check_invariants(true).ok);
+  CHECK(mesh_test::oriented_boundary(state.source) == boundary);
+  CHECK(volmap::analyze_feasibility(state).fixed_nonpositive_tets.empty());
+
+  const auto r = volmap::compute_volume_map(m, map);
+  CHECK(r.certified);
+  CHECK(r.source.num_tets() == 6);
+  CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
 }

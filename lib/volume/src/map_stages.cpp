@@ -36,7 +36,8 @@ std::vector<InfeasibilityCertificate> find_local_infeasibility(const MapState& s
 ChordSplitResult remove_blocking_chords(MapState& s, const FeasibilityReport& report) {
   s.require_compact();
   const ChordRules rules(s.source, s.locked.data(), s.target_xyz());
-  const ChordSplitResult r = remove_blocking_chords(s.source, rules, report.blocking_chord_edges, report.blocking_chord_faces);
+  ChordSplitResult r = remove_blocking_chords(s.source, rules, report.blocking_chord_edges, report.blocking_chord_faces);
+  free_fixed_nonpositive_tets(s.source, rules, r);
   if (s.source.num_free_tet_slots() > 0) s.source.compact();  // a degree-3 removal frees a slot; vertex ids stay
   return r;
 }

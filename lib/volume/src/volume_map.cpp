@@ -118,7 +118,7 @@ class VolumeMapper {
 
   void remove_blocking_chords_stage() {
     const FeasibilityReport& f = result_.feasibility;
-    if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty()) return;
+    if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty() && f.fixed_nonpositive_tets.empty()) return;
     ChordSplitResult cs;
     timed_stage("chord-split", [&] { cs = remove_blocking_chords(state_, f); });
     result_.chord_edges_split = cs.edges_split;

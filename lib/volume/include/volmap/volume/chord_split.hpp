@@ -44,6 +44,13 @@ ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::u
 ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, const std::vector<std::array<std::uint32_t, 2>>& edges,
                                         const std::vector<std::array<std::uint32_t, 3>>& faces);
 
+// B0 for the tets whose four vertices are locked and whose fixed image is not strictly positive
+// (no vertex move can repair them): each one still in the mesh loses one interior face, by a 2-3
+// flip when one is admissible (chord_flip.hpp), else by a split of its largest interior face, so
+// every tet that replaces it holds a vertex that can move. Counts go into `r` (faces_flipped,
+// faces_split, vertices_added, tets_after); returns the number of tets freed.
+std::size_t free_fixed_nonpositive_tets(TetMesh& mesh, const ChordRules& rules, ChordSplitResult& r);
+
 // The same on flat arrays: the result is written back compacted (original ids kept, new vertices
 // appended, locked extended with 0).
 ChordSplitResult split_chords(TetMeshData& mesh, std::vector<std::uint8_t>& locked,
