@@ -28,6 +28,13 @@ constexpr int kMaxReweightRounds = 200;
 constexpr int kMaxCentroidPasses = 10;
 // Per round, a vertex's relative stretch is clamped to [1/kStretchClamp, kStretchClamp].
 constexpr double kStretchClamp = 1e4;
+// A chart whose most shrunk triangle has less than kMinAreaRatio of its fair share of the face's
+// area (its surface area × the chart's plane/surface area ratio) is reweighted until it has, at
+// most kMaxQualityRounds times: Tutte's uniform weights shrink long thin parts exponentially
+// (areas 1e-20 of their share on a creature's limbs), and a volume map inside such a sliver of the
+// domain needs points that doubles cannot hold.
+constexpr double kMinAreaRatio = 1e-4;
+constexpr int kMaxQualityRounds = 30;
 
 // Nodes on their targets, arc vertices on the straight segment between the targets of the arc's
 // nodes, spaced by arc length.
@@ -171,6 +178,9 @@ class ChartEmbedder {
   // budget is spent.
   void reweight_until_valid(Chart& c, const double* k);
   bool valid(const Chart& c, const double* k) const;
+  // Reweights c while its smallest area ratio is below kMinAreaRatio, keeping the weights of the
+  // best round (kMaxQualityRounds at most).
+  void reduce_shrinking(Chart& c);
 
  private:
   const WorkingSurface& s_;
@@ -181,6 +191,7 @@ class ChartEmbedder {
 
   void project_graph_vertices(const Chart& c);
   void reduce_stretch_weights(Chart& c);
+  double smallest_area_ratio(const Chart& c);
 };
 
 Chart ChartEmbedder::build(std::vector<FaceHandle> faces, const FaceFrame& frame, int face) {
@@ -329,6 +340,49 @@ void ChartEmbedder::reduce_stretch_weights(Chart& c) {
     for (auto v : face_vertices(s_.mesh, f)) sum_area_[v.idx()] = sum_stretch_[v.idx()] = 0;
 }
 
+// The smallest (plane area / surface area) of the chart's triangles over the chart's ratio (0 for
+// a triangle the rounding collapsed or inverted).
+double ChartEmbedder::smallest_area_ratio(const Chart& c) {
+  project_graph_vertices(c);
+  double total2 = 0, total3 = 0, worst = std::numeric_limits<double>::infinity();
+  for (auto f : c.faces) {
+    const auto t = face_vertices(s_.mesh, f);
+    const double* ua = &uv_[2 * t[0].idx()];
+    const double* ub = &uv_[2 * t[1].idx()];
+    const double* uc = &uv_[2 * t[2].idx()];
+    const double A2 = 0.5 * ((ub[0] - ua[0]) * (uc[1] - ua[1]) - (uc[0] - ua[0]) * (ub[1] - ua[1]));
+    const double* p = s_.point(t[0]);
+    const double* q = s_.point(t[1]);
+    const double* r = s_.point(t[2]);
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double A3 = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    total2 += std::max(A2, 0.0);
+    total3 += A3;
+    if (A3 > 0) worst = std::min(worst, std::max(A2, 0.0) / A3);
+  }
+  return total2 > 0 && total3 > 0 ? worst / (total2 / total3) : 0.0;
+}
+
+void ChartEmbedder::reduce_shrinking(Chart& c) {
+  if (c.interior.empty()) return;
+  double best = smallest_area_ratio(c);
+  std::vector<double> best_weight = c.weight;
+  for (int round = 0; round < kMaxQualityRounds && best < kMinAreaRatio; ++round) {
+    reduce_stretch_weights(c);
+    solve(c);
+    const double ratio = smallest_area_ratio(c);
+    if (ratio > best) {
+      best = ratio;
+      best_weight = c.weight;
+    }
+  }
+  if (best_weight != c.weight) {
+    c.weight = std::move(best_weight);
+    solve(c);
+  }
+}
+
 void ChartEmbedder::reweight_until_valid(Chart& c, const double* k) {
   while (!valid(c, k)) {
     if (c.interior.empty())
@@ -355,6 +409,7 @@ std::vector<double> embed_charts(WorkingSurface& s, const Domain& d, const Embed
   for (std::size_t c = 0; c < chart_face.size(); ++c) {
     charts.push_back(embedder.build(std::move(chart_faces[c]), face_frame(d, d.faces[chart_face[c]]), chart_face[c]));
     embedder.solve(charts.back());
+    embedder.reduce_shrinking(charts.back());
   }
   // Valid about the check's kernel: the domain's own (custom, polycube) or the centroid of all image
   // points (vertex index order = vid order). Reweighting a chart moves the centroid a little: repeat
