@@ -10,6 +10,11 @@
 
 #include "test_support.hpp"
 #include "vmap_test_util.hpp"
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/io/io.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 #include <filesystem>
 #include <string>
@@ -65,5 +70,55 @@ TEST_CASE("coarse thin calibration cube onto the star: from Tutte 3D certified o
   CHECK(code_off == 1);
   CHECK(j_off["certified"] == false);
   CHECK(j_off["growth_budget_escalations"] == 0);
+
+namespace {
+// The smallest share of the boundary image's area any boundary triangle gets, over its share of the
+// source boundary's area (1 for a map that scales every triangle alike).
+double smallest_relative_area(const volmap::TetMeshData& mesh, const volmap::BoundaryMap& map) {
+  std::vector<const double*> image(mesh.num_vertices(), nullptr);
+  for (std::size_t k = 0; k < map.vids.size(); ++k) image[map.vids[k]] = &map.xyz[3 * k];
+  auto area = [](const double* a, const double* b, const double* c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  };
+  std::vector<std::pair<double, double>> areas;
+  double source_total = 0, image_total = 0;
+  for (std::uint64_t hf : volmap::boundary_half_faces(mesh)) {
+    const auto f = volmap::half_face_vertices(mesh, hf);
+    if (!(image[f[0]] && image[f[1]] && image[f[2]])) return 0;  // a boundary vertex without an image
+    const double s = area(&mesh.xyz[3 * f[0]], &mesh.xyz[3 * f[1]], &mesh.xyz[3 * f[2]]);
+    const double i = area(image[f[0]], image[f[1]], image[f[2]]);
+    areas.push_back({s, i});
+    source_total += s;
+    image_total += i;
+  }
+  double smallest = 1e300;
+  for (const auto& [s, i] : areas) smallest = std::min(smallest, (i / image_total) / (s / source_total));
+  return smallest;
+}
+}  // namespace
+
+TEST_CASE("thin tentacles onto the pyramid: no boundary triangle is shrunk to a sliver of the domain doubles cannot fill") {
+  // Tutte's uniform weights shrink each tentacle exponentially along its length: this map used to
+  // give its tips 1e-25 of their share of the area (edges of 1e-12 on a unit domain), where no
+  // double point lies strictly inside a volume tet. The stretch-reducing rounds of the chart
+  // embedding keep every triangle above 1e-4 of its share within its chart.
+  if (!fs::exists(volmap_test::tool("volmap-tetrahedralize"))) {
+    MESSAGE("skipped: volmap-tetrahedralize is not built (needs TetGen)");
+    return;
+  }
+  const fs::path d = volmap_test::scratch_dir("thin_tentacles_surface");
+  REQUIRE(run(tool("volmap-shapes") + " " + quote((d / "shapes").string()) + " --thin --format off > /dev/null").code == 0);
+  const std::string mesh = (d / "t.mesh").string(), map = (d / "t_pyr.txt").string(), in = (d / "t_pyr_in.mesh").string();
+  REQUIRE(run(tool("volmap-tetrahedralize") + " " + quote((d / "shapes" / "tentacles_thin.off").string()) + " " + quote(mesh) +
+              " --coarse > /dev/null")
+              .code == 0);
+  REQUIRE(run(tool("volmap-surface-map") + " pyr " + quote(mesh) + " " + quote(map) + " --refined " + quote(in) + " > /dev/null").code == 0);
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(fs::exists(in) ? in : mesh) + " " + quote(map) + " > /dev/null").code == 0);
+  const double smallest = smallest_relative_area(volmap::read_medit(fs::exists(in) ? in : mesh), volmap::read_boundary_map(map));
+  MESSAGE("tentacles_thin -> pyr: smallest relative triangle area " << smallest);
+  CHECK(smallest > 1e-6);
+}
   CHECK(check_off != 0);
 }
