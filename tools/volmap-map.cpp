@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   CLI::App app{"volmap-map: certified volume map of a tet mesh onto a domain with a fixed boundary map", "volmap-map"};
   std::string in_path, map_path, out_path, refined_path, rationals_path, initial_path, method = "ffm", start = "fewest";
   double max_growth = 0.05, max_growth_cap = volmap::VolumeMapOptions{}.max_growth_last_resort, time_limit = 60, quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease;
-  bool no_refine = false, json = false, no_quality = false;
+  bool no_refine = false, no_restart = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
   bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
       ->check(finite_non_negative());
   app.add_option("--start", start, "starting map: tutte (Tutte 3D), radial (Tutte inside the boundary image projected onto a sphere about a kernel point, mapped back cone by cone), or fewest (default: Tutte, and on a non-convex boundary image also radial, keeping the one with fewer bad tets)")
       ->check(CLI::IsMember({"tutte", "radial", "fewest"}));
+  app.add_flag("--no-restart", no_restart, "with --start fewest: never restart from the other start (default: when both starts were computed and the first run is not certified in half the time limit, the other start gets the rest)");
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
@@ -126,6 +127,7 @@ int main(int argc, char** argv) {
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
     opt.start = start == "tutte" ? volmap::StartMap::Tutte : start == "radial" ? volmap::StartMap::Radial : volmap::StartMap::Fewest;
+    opt.restart_share = no_restart ? 1.0 : opt.restart_share;
     opt.quality_relative_decrease = quality_tol;
     opt.tlc_time_share = tlc_share;
     opt.ffm_max_lbfgs_iterations = ffm_inner;
@@ -167,6 +169,8 @@ int main(int argc, char** argv) {
                        {"certified_on", "the written files, read back (check_map)"},
                        {"method", method},
                        {"certified_by", r.certified_by},
+                       {"start", r.start == volmap::StartMap::Radial ? "radial" : "tutte"},
+                       {"restarted", r.restarted},
                        {"input_tets", r.input_tets},
                        {"input_vertices", r.input_vertices},
                        {"output_tets", written.num_tets()},

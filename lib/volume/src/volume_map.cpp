@@ -25,15 +25,10 @@ namespace {
 class VolumeMapper {
  public:
   VolumeMapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options)
-      : options_(options), map_(map), total_(options.time_limit_seconds), state_(input, map, options.initial_xyz), judge_(state_),
+      : options_(options), map_(map), total_(options.time_limit_seconds), attempt_(total_), state_(input, map, options.initial_xyz), judge_(state_),
         input_has_tet_labels_(!input.tet_labels.empty()), input_has_vertex_labels_(!input.vertex_labels.empty()) {
     b1_rounds_ = options.allow_refinement && options.method == MapMethod::Ffm;
-    // MapMethod::Tlc is one stage: it plans nothing and gets the whole limit.
-    const double horizon = options.method == MapMethod::Ffm ? options.planning_horizon_seconds : 0;
-    plan_ = total_.limited() && horizon > 0 && total_.limit_seconds() > horizon ? total_.first_part(horizon / total_.limit_seconds())
-                                                                                 : total_;
-    cascade_budget_ = b1_rounds_ ? plan_.first_part(options.refine_time_share) : plan_;
-    budget_ = &cascade_budget_;
+    plan_schedule();
     growth_budget_ = std::size_t(options.max_growth * double(state_.input_tets));
     growth_cap_ = std::max(growth_budget_, std::size_t(options.max_growth_last_resort * double(state_.input_tets)));
   }
@@ -62,6 +57,7 @@ class VolumeMapper {
   const VolumeMapOptions& options_;
   const BoundaryMap& map_;
   TimeBudget total_;  // started first: the time of the whole call
+  TimeBudget attempt_;  // this run's share of it (less than total_ when a restart may follow)
   MapState state_;
   StageJudge judge_;
   VolumeMapResult result_;
@@ -74,6 +70,18 @@ class VolumeMapper {
   std::size_t bad_ = 0;  // exact non-positive count of the state kept
   std::size_t early_b1_stalled_at_ = std::size_t(-1);  // bad count of the last early B1 that patched nothing
   bool input_has_tet_labels_, input_has_vertex_labels_;  // label arrays stay empty when the input's were
+
+  // The schedule over attempt_: planned over min(its limit, the planning horizon); with refinement
+  // the cascade gets the first refine_time_share of the plan. MapMethod::Tlc is one stage: it plans
+  // nothing and gets the whole limit.
+  void plan_schedule() {
+    const double horizon = options_.method == MapMethod::Ffm ? options_.planning_horizon_seconds : 0;
+    plan_ = attempt_.limited() && horizon > 0 && attempt_.limit_seconds() > horizon
+                ? attempt_.first_part(horizon / attempt_.limit_seconds())
+                : attempt_;
+    cascade_budget_ = b1_rounds_ ? plan_.first_part(options_.refine_time_share) : plan_;
+    budget_ = &cascade_budget_;
+  }
 
   // ---- bookkeeping --------------------------------------------------------------------------
   // Runs one untangling stage and judges it; names it as the certifying stage when it left no
@@ -143,11 +151,24 @@ class VolumeMapper {
       judged_stage("radial-tutte", [&] {
         if (!place_by_radial_tutte(state_).placed) place_by_tutte(state_);
       });
+      result_.start = StartMap::Radial;
       return;
     }
     judged_stage("tutte3d", [&] { place_by_tutte(state_); });
-    if (start == StartMap::Fewest && bad_ > 0 && !boundary_image_is_convex(state_))
+    result_.start = StartMap::Tutte;
+    if (start == StartMap::Fewest && bad_ > 0 && !boundary_image_is_convex(state_)) {
+      const std::size_t tutte_bad = bad_;
       judged_stage("radial-tutte", [&] { place_by_radial_tutte(state_); });
+      const bool radial_kept = result_.stages.back().nonpositive_after <= tutte_bad && result_.stages.back().failure.empty();
+      result_.start = radial_kept ? StartMap::Radial : StartMap::Tutte;
+      result_.other_start = radial_kept ? StartMap::Tutte : StartMap::Radial;
+      result_.has_other_start = true;
+      // A restart from the other start may follow: this run keeps its first share of the limit.
+      if (bad_ > 0 && options_.restart_share < 1 && total_.limited()) {
+        attempt_ = total_.first_part(options_.restart_share);
+        plan_schedule();
+      }
+    }
   }
 
   // ---- stages used by several phases ----------------------------------------------------------
@@ -324,11 +345,11 @@ class VolumeMapper {
   // goes to more judged rounds of the last phase (B1 rounds, or the global FFM stages without B1),
   // so more time never ends with more non-positive tets.
   void use_time_beyond_plan() {
-    if (!total_.limited() || plan_.limit_seconds() >= total_.limit_seconds() || total_.expired()) return;
+    if (!attempt_.limited() || plan_.limit_seconds() >= attempt_.limit_seconds() || attempt_.expired()) return;
     if (b1_rounds_) {
-      repair_rounds(total_);
+      repair_rounds(attempt_);
     } else if (cascade()) {
-      budget_ = &total_;
+      budget_ = &attempt_;
       global_ffm();
     }
   }
@@ -372,6 +393,40 @@ class VolumeMapper {
   }
 };
 
+VolumeMapResult run_mapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
+  VolumeMapper mapper(input, map, options);  // validates the input (Error(BadInput))
+  try {
+    return mapper.run();
+  } catch (const Error& e) {  // the input was valid: whatever fails now is the mapper's own failure
+    if (e.kind() != ErrorKind::BadInput) throw;
+    throw Error(ErrorKind::Failed, "", 0, "internal: " + e.reason());
+  }
+}
+
+// A run from the start with fewer non-positive tets that ended uncertified gets a second run from
+// the other start, unless an exact certificate proves that no map exists (at any refinement, or
+// at fixed connectivity without refinement).
+bool worth_a_restart(const VolumeMapResult& r, const VolumeMapOptions& options) {
+  if (r.certified || !r.has_other_start || options.restart_share >= 1 || options.method != MapMethod::Ffm) return false;
+  if (r.feasibility.infeasible_with_any_refinement()) return false;
+  return options.allow_refinement || r.infeasibility.empty();
+}
+
+// The certified run, else the one with fewer non-positive tets (the first on a tie); its stage list
+// follows the other's, so the result shows all the work done.
+VolumeMapResult better_of_two_starts(VolumeMapResult first, VolumeMapResult second, double seconds) {
+  const bool second_wins = second.certified || (!first.certified && second.nonpositive < first.nonpositive);
+  const std::size_t input_tets = first.input_tets, first_bad = first.nonpositive;
+  std::vector<VolumeMapStage> stages = std::move(first.stages);
+  stages.push_back({"restart", 0, first_bad, input_tets, ""});  // the first run's count; the input again
+  stages.insert(stages.end(), second.stages.begin(), second.stages.end());
+  VolumeMapResult& kept = second_wins ? second : first;
+  kept.stages = std::move(stages);
+  kept.restarted = true;
+  kept.seconds = seconds;
+  return std::move(kept);
+}
+
 }  // namespace
 
 VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
@@ -380,13 +435,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(options.max_threads));
   if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
     throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
-  VolumeMapper mapper(input, map, options);  // validates the input (Error(BadInput))
-  try {
-    return mapper.run();
-  } catch (const Error& e) {  // the input was valid: whatever fails now is the mapper's own failure
-    if (e.kind() != ErrorKind::BadInput) throw;
-    throw Error(ErrorKind::Failed, "", 0, "internal: " + e.reason());
-  }
+  const TimeBudget total(options.time_limit_seconds);
+  VolumeMapResult first = run_mapper(input, map, options);  // validates the input (Error(BadInput))
+  if (!worth_a_restart(first, options)) return first;
+  VolumeMapOptions again = options;
+  again.start = first.other_start;
+  again.restart_share = 1;
+  if (total.limited()) again.time_limit_seconds = total.remaining();
+  VolumeMapResult second = run_mapper(input, map, again);
+  return better_of_two_starts(std::move(first), std::move(second), total.elapsed());
 }
 
 }  // namespace volmap

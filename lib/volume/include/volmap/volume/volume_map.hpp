@@ -89,6 +89,13 @@ struct VolumeMapOptions {
   // fewer exactly non-positive tets is kept (the radial start on a tie: the judge keeps a stage that
   // does not make the count worse).
   StartMap start = StartMap::Fewest;
+  // Cascade with StartMap::Fewest when both starts were computed (a non-convex boundary image that
+  // Tutte 3D does not map validly) and a time limit is set: the run from the kept start may use
+  // this fraction of the limit; when it ends uncertified (and no exact certificate proves the case
+  // impossible), a second run from the other start gets the rest, and the certified run, else the
+  // one with fewer non-positive tets, is returned. Without a time limit both run to their caps.
+  // 1 = never restart.
+  double restart_share = 0.5;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
@@ -117,6 +124,10 @@ struct VolumeMapResult {
   std::size_t growth_budget_escalations = 0;                       // times B1's budget grew (max_growth_last_resort)
   std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
   std::string certified_by;         // stage that produced the certified map
+  StartMap start = StartMap::Tutte;  // the starting map this result was untangled from
+  bool has_other_start = false;      // both starts were computed (StartMap::Fewest) ...
+  StartMap other_start = StartMap::Tutte;  // ... and this is the one not kept
+  bool restarted = false;            // two runs (see restart_share); stages lists both, "restart" between
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
   // (infeasibility.hpp, each verified). Without refinement a non-empty list ends the run before
