@@ -192,6 +192,7 @@ class ChartEmbedder {
   void project_graph_vertices(const Chart& c);
   void reduce_stretch_weights(Chart& c);
   double smallest_area_ratio(const Chart& c);
+  std::array<double, 2> plane_and_surface_area(const std::array<VertexHandle, 3>& t) const;
 };
 
 Chart ChartEmbedder::build(std::vector<FaceHandle> faces, const FaceFrame& frame, int face) {
@@ -280,6 +281,21 @@ bool ChartEmbedder::valid(const Chart& c, const double* k) const {
   return true;
 }
 
+// The signed area of a chart triangle in its face plane (the current plane coordinates) and its
+// area on the surface.
+std::array<double, 2> ChartEmbedder::plane_and_surface_area(const std::array<VertexHandle, 3>& t) const {
+  const double* ua = &uv_[2 * t[0].idx()];
+  const double* ub = &uv_[2 * t[1].idx()];
+  const double* uc = &uv_[2 * t[2].idx()];
+  const double* p = s_.point(t[0]);
+  const double* q = s_.point(t[1]);
+  const double* r = s_.point(t[2]);
+  const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+  const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  return {0.5 * ((ub[0] - ua[0]) * (uc[1] - ua[1]) - (uc[0] - ua[0]) * (ub[1] - ua[1])),
+          0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])};
+}
+
 // One round of stretch reduction (after Yoshizawa, Belyaev and Seidel's stretch-minimising
 // reweighting, symmetrised): each vertex's L2 stretch sigma (area-weighted over its chart triangles,
 // relative to the chart's mean scale, clamped) divides the weights of its edges by sqrt(sigma), so
@@ -299,10 +315,7 @@ void ChartEmbedder::reduce_stretch_weights(Chart& c) {
     const double* p = s_.point(t[0]);
     const double* q = s_.point(t[1]);
     const double* r = s_.point(t[2]);
-    const double A2 = 0.5 * ((ub[0] - ua[0]) * (uc[1] - ua[1]) - (uc[0] - ua[0]) * (ub[1] - ua[1]));
-    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    const double A3 = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const auto [A2, A3] = plane_and_surface_area(t);
     double s2 = std::numeric_limits<double>::infinity();
     if (A2 > 0) {
       double ss = 0, st = 0;
@@ -346,17 +359,7 @@ double ChartEmbedder::smallest_area_ratio(const Chart& c) {
   project_graph_vertices(c);
   double total2 = 0, total3 = 0, worst = std::numeric_limits<double>::infinity();
   for (auto f : c.faces) {
-    const auto t = face_vertices(s_.mesh, f);
-    const double* ua = &uv_[2 * t[0].idx()];
-    const double* ub = &uv_[2 * t[1].idx()];
-    const double* uc = &uv_[2 * t[2].idx()];
-    const double A2 = 0.5 * ((ub[0] - ua[0]) * (uc[1] - ua[1]) - (uc[0] - ua[0]) * (ub[1] - ua[1]));
-    const double* p = s_.point(t[0]);
-    const double* q = s_.point(t[1]);
-    const double* r = s_.point(t[2]);
-    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    const double A3 = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const auto [A2, A3] = plane_and_surface_area(face_vertices(s_.mesh, f));
     total2 += std::max(A2, 0.0);
     total3 += A3;
     if (A3 > 0) worst = std::min(worst, std::max(A2, 0.0) / A3);
