@@ -207,7 +207,7 @@ class VolumeMapper {
   // (repair and local FFM both without progress), the repair widens the search when a round repairs
   // nothing (ConeRepairOptions::search_escalations). A widening persists: later rounds start from the
   // widest search used so far.
-  ConeRepairResult cone_repair_stage(const std::string& name, bool widen_search) {
+  ConeRepairResult cone_repair_stage(const std::string& name, bool widen_search, double time_share = 0.5) {
     ConeRepairOptions co;
     if (!widen_search) {
       co.search_escalations = 0;
@@ -218,7 +218,7 @@ class VolumeMapper {
     }
     const long long used = (long long)state_.source.num_tets() - (long long)state_.input_tets;
     co.max_added_tets = std::size_t(std::max(1LL, (long long)growth_budget_ - used));
-    co.time_limit_seconds = budget_->option_seconds(0.5);
+    co.time_limit_seconds = budget_->option_seconds(time_share);
     ConeRepairResult cr;
     judged_stage(name, [&] { cr = run_cone_repair(state_, co); }, "cone-repair");
     if (!result_.stages.back().failure.empty()) cr = ConeRepairResult{};  // undone
@@ -284,6 +284,16 @@ class VolumeMapper {
     }
     local_ffm(0.25);
     try_early_b1("ffm-local");
+    try_b1_after_stall();
+  }
+
+  // When TLC and the local moves leave more non-positive tets than an early B1 attempt takes, the
+  // global FFM stages that would follow rarely lower the count on refinable meshes (measured:
+  // thin_coarse dumbbell -> pyr 263 bad tets through 15 s of FFM stages, then B1 repaired 260 in
+  // 6 s). One B1 attempt with a quarter of the time left comes first; what it repairs is kept.
+  void try_b1_after_stall() {
+    if (bad_ == 0 || !b1_rounds_ || bad_ <= options_.early_repair_max_bad || budget_->expired()) return;
+    cone_repair_stage("cone-repair-after-stall", false, 0.25);
   }
 
   // §5 global FFM with the regular reference, then the rest shape, each followed by the link kernel,
