@@ -192,6 +192,11 @@ class ChartEmbedder {
   void project_graph_vertices(const Chart& c);
   void reduce_stretch_weights(Chart& c);
   double smallest_area_ratio(const Chart& c);
+  // A triangle's corners: plane coordinates (2 doubles each) and surface points (3 each).
+  struct Corners {
+    const double *ua, *ub, *uc, *p, *q, *r;
+  };
+  Corners corners(const std::array<VertexHandle, 3>& t) const;
   std::array<double, 2> plane_and_surface_area(const std::array<VertexHandle, 3>& t) const;
 };
 
@@ -283,13 +288,12 @@ bool ChartEmbedder::valid(const Chart& c, const double* k) const {
 
 // The signed area of a chart triangle in its face plane (the current plane coordinates) and its
 // area on the surface.
+ChartEmbedder::Corners ChartEmbedder::corners(const std::array<VertexHandle, 3>& t) const {
+  return {&uv_[2 * t[0].idx()], &uv_[2 * t[1].idx()], &uv_[2 * t[2].idx()], s_.point(t[0]), s_.point(t[1]), s_.point(t[2])};
+}
+
 std::array<double, 2> ChartEmbedder::plane_and_surface_area(const std::array<VertexHandle, 3>& t) const {
-  const double* ua = &uv_[2 * t[0].idx()];
-  const double* ub = &uv_[2 * t[1].idx()];
-  const double* uc = &uv_[2 * t[2].idx()];
-  const double* p = s_.point(t[0]);
-  const double* q = s_.point(t[1]);
-  const double* r = s_.point(t[2]);
+  const auto [ua, ub, uc, p, q, r] = corners(t);
   const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
   const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
   return {0.5 * ((ub[0] - ua[0]) * (uc[1] - ua[1]) - (uc[0] - ua[0]) * (ub[1] - ua[1])),
@@ -309,12 +313,7 @@ void ChartEmbedder::reduce_stretch_weights(Chart& c) {
   double total2 = 0, total3 = 0;
   for (std::size_t i = 0; i < c.faces.size(); ++i) {
     const auto t = face_vertices(s_.mesh, c.faces[i]);
-    const double* ua = &uv_[2 * t[0].idx()];
-    const double* ub = &uv_[2 * t[1].idx()];
-    const double* uc = &uv_[2 * t[2].idx()];
-    const double* p = s_.point(t[0]);
-    const double* q = s_.point(t[1]);
-    const double* r = s_.point(t[2]);
+    const auto [ua, ub, uc, p, q, r] = corners(t);
     const auto [A2, A3] = plane_and_surface_area(t);
     double s2 = std::numeric_limits<double>::infinity();
     if (A2 > 0) {
