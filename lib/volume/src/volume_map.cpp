@@ -452,8 +452,14 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   again.start = first.other_start;
   again.restart_share = 1;
   if (total.limited()) again.time_limit_seconds = total.remaining();
-  VolumeMapResult second = run_mapper(input, map, again);
-  return better_of_two_starts(std::move(first), std::move(second), total.elapsed());
+  try {
+    VolumeMapResult second = run_mapper(input, map, again);
+    return better_of_two_starts(std::move(first), std::move(second), total.elapsed());
+  } catch (const Error& e) {  // the restart failed internally: the first run's result stands
+    first.stages.push_back({"restart", 0, first.nonpositive, first.input_tets, e.reason()});
+    first.seconds = total.elapsed();
+    return first;
+  }
 }
 
 }  // namespace volmap
