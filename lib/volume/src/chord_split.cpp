@@ -270,50 +270,50 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
   return r;
 }
 
-std::size_t free_fixed_nonpositive_tets(TetMesh& mesh, const ChordRules& rules, ChordSplitResult& r) {
-  std::vector<std::array<std::uint32_t, 4>> fixed;
-  {
-    const FpEnvironmentScope fp;
-    for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-      if (!mesh.tet_is_live(TetId(t))) continue;
-      const auto tv = mesh.tet_vertices(TetId(t));
-      std::array<std::uint32_t, 4> v = {tv[0].idx(), tv[1].idx(), tv[2].idx(), tv[3].idx()};
-      if (rules.locked(v[0]) && rules.locked(v[1]) && rules.locked(v[2]) && rules.locked(v[3]) && rules.fixed_tet_nonpositive(v))
-        fixed.push_back(v);
+namespace {
+
+// Takes the fixed tet t out of the mesh: a 2-3 flip of one of its interior faces (largest source
+// area first) when admissible, else a split of its largest interior face. False when it has no
+// interior face.
+bool free_fixed_tet(TetMesh& mesh, const ChordRules& rules, TetId t, ChordSplitResult& r) {
+  std::vector<std::pair<double, std::array<std::uint32_t, 3>>> faces;  // (squared double area, vertices)
+  for (int i = 0; i < 4; ++i) {
+    if (!mesh.half_face_opposite(HalfFaceId(t, i)).is_valid()) continue;
+    const auto fv = mesh.half_face_vertices(HalfFaceId(t, i));
+    const double* a = mesh.vertex_position(fv[0]);
+    const double* b = mesh.vertex_position(fv[1]);
+    const double* c = mesh.vertex_position(fv[2]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    faces.push_back({n[0] * n[0] + n[1] * n[1] + n[2] * n[2], {fv[0].idx(), fv[1].idx(), fv[2].idx()}});
+  }
+  if (faces.empty()) return false;
+  std::stable_sort(faces.begin(), faces.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  for (const auto& f : faces)
+    if (flip_chord_face(mesh, rules, f.second)) {
+      ++r.faces_flipped;
+      return true;
     }
+  if (!split(mesh, faces.front().second.data(), 3)) return false;
+  ++r.faces_split;
+  return true;
+}
+
+}  // namespace
+
+std::size_t free_fixed_nonpositive_tets(TetMesh& mesh, const ChordRules& rules, ChordSplitResult& r) {
+  std::vector<std::array<std::uint32_t, 4>> fixed;  // by vertices: the fixes below reuse tet slots
+  for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
+    if (!mesh.tet_is_live(TetId(t))) continue;
+    const auto tv = mesh.tet_vertices(TetId(t));
+    const std::array<std::uint32_t, 4> v = {tv[0].idx(), tv[1].idx(), tv[2].idx(), tv[3].idx()};
+    if (rules.fixed_tet_nonpositive(v)) fixed.push_back(v);  // false unless all four are locked
   }
   const std::size_t nv0 = mesh.num_vertices();
   std::size_t freed = 0;
   for (const auto& v : fixed) {
     const std::vector<TetId> found = tets_with(mesh, v.data(), 4);
-    if (found.empty()) continue;  // an earlier fix took it away
-    const TetId t = found.front();
-    // Its interior faces (all chord faces), largest source area first.
-    std::vector<std::pair<double, std::array<std::uint32_t, 3>>> faces;
-    for (int i = 0; i < 4; ++i) {
-      if (!mesh.half_face_opposite(HalfFaceId(t, i)).is_valid()) continue;
-      const auto fv = mesh.half_face_vertices(HalfFaceId(t, i));
-      const double* a = mesh.vertex_position(fv[0]);
-      const double* b = mesh.vertex_position(fv[1]);
-      const double* c = mesh.vertex_position(fv[2]);
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      faces.push_back({n[0] * n[0] + n[1] * n[1] + n[2] * n[2], {fv[0].idx(), fv[1].idx(), fv[2].idx()}});
-    }
-    if (faces.empty()) continue;
-    std::stable_sort(faces.begin(), faces.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-    bool fixed_it = false;
-    for (const auto& f : faces)
-      if (flip_chord_face(mesh, rules, f.second)) {
-        ++r.faces_flipped;
-        fixed_it = true;
-        break;
-      }
-    if (!fixed_it && split(mesh, faces.front().second.data(), 3)) {
-      ++r.faces_split;
-      fixed_it = true;
-    }
-    if (fixed_it) ++freed;
+    if (!found.empty() && free_fixed_tet(mesh, rules, found.front(), r)) ++freed;  // empty: an earlier fix took it
   }
   r.vertices_added += mesh.num_vertices() - nv0;
   r.tets_after = mesh.num_tets();

@@ -162,7 +162,6 @@ class VolumeMapper {
       const bool radial_kept = result_.stages.back().nonpositive_after <= tutte_bad && result_.stages.back().failure.empty();
       result_.start = radial_kept ? StartMap::Radial : StartMap::Tutte;
       result_.other_start = radial_kept ? StartMap::Tutte : StartMap::Radial;
-      result_.has_other_start = true;
       // A restart from the other start may follow: this run keeps its first share of the limit.
       if (bad_ > 0 && options_.restart_share < 1 && total_.limited()) {
         attempt_ = total_.first_part(options_.restart_share);
@@ -417,7 +416,7 @@ VolumeMapResult run_mapper(const TetMeshData& input, const BoundaryMap& map, con
 // the other start, unless an exact certificate proves that no map exists (at any refinement, or
 // at fixed connectivity without refinement).
 bool worth_a_restart(const VolumeMapResult& r, const VolumeMapOptions& options) {
-  if (r.certified || !r.has_other_start || options.restart_share >= 1 || options.method != MapMethod::Ffm) return false;
+  if (r.certified || !r.other_start || options.restart_share >= 1) return false;
   if (r.feasibility.infeasible_with_any_refinement()) return false;
   return options.allow_refinement || r.infeasibility.empty();
 }
@@ -449,7 +448,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   VolumeMapResult first = run_mapper(input, map, options);  // validates the input (Error(BadInput))
   if (!worth_a_restart(first, options)) return first;
   VolumeMapOptions again = options;
-  again.start = first.other_start;
+  again.start = *first.other_start;
   again.restart_share = 1;
   if (total.limited()) again.time_limit_seconds = total.remaining();
   try {

@@ -24,6 +24,7 @@
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -125,8 +126,7 @@ struct VolumeMapResult {
   std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
   std::string certified_by;         // stage that produced the certified map
   StartMap start = StartMap::Tutte;  // the starting map this result was untangled from
-  bool has_other_start = false;      // both starts were computed (StartMap::Fewest) ...
-  StartMap other_start = StartMap::Tutte;  // ... and this is the one not kept
+  std::optional<StartMap> other_start;  // when both starts were computed (StartMap::Fewest): the one not kept
   bool restarted = false;            // two runs (see restart_share); stages lists both, "restart" between
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
