@@ -24,6 +24,23 @@ using vmap_test::run;
 
 namespace {
 std::string tool(const char* name) { return quote(volmap_test::tool(name).string()); }
+
+struct MappedShape {
+  std::string source, map;  // the tet mesh the map belongs to (refined by the surface map or not) and the map
+};
+
+// volmap-shapes --thin → volmap-tetrahedralize --coarse (of `shape`) → volmap-surface-map `domain`, in d.
+MappedShape coarse_thin_surface_map(const fs::path& d, const std::string& shape, const std::string& domain) {
+  REQUIRE(run(tool("volmap-shapes") + " " + quote((d / "shapes").string()) + " --thin --format off > /dev/null").code == 0);
+  const std::string mesh = (d / (shape + ".mesh")).string(), map = (d / (shape + "_" + domain + ".txt")).string(),
+                    in = (d / (shape + "_" + domain + "_in.mesh")).string();
+  REQUIRE(run(tool("volmap-tetrahedralize") + " " + quote((d / "shapes" / (shape + ".off")).string()) + " " + quote(mesh) +
+              " --coarse > /dev/null")
+              .code == 0);
+  REQUIRE(run(tool("volmap-surface-map") + " " + domain + " " + quote(mesh) + " " + quote(map) + " --refined " + quote(in) + " > /dev/null")
+              .code == 0);
+  return {fs::exists(in) ? in : mesh, map};
+}
 }  // namespace
 
 TEST_CASE("coarse thin calibration cube onto the star: the radial start stalls, the restart from Tutte 3D certifies") {
@@ -32,14 +49,7 @@ TEST_CASE("coarse thin calibration cube onto the star: the radial start stalls, 
     return;
   }
   const fs::path d = volmap_test::scratch_dir("thin_pipeline");
-  REQUIRE(run(tool("volmap-shapes") + " " + quote((d / "shapes").string()) + " --thin --format off > /dev/null").code == 0);
-  const std::string mesh = (d / "cc.mesh").string(), map = (d / "cc_star.txt").string(), in = (d / "cc_star_in.mesh").string();
-  REQUIRE(run(tool("volmap-tetrahedralize") + " " + quote((d / "shapes" / "calibration_cube_thin.off").string()) + " " +
-              quote(mesh) + " --coarse > /dev/null")
-              .code == 0);
-  REQUIRE(run(tool("volmap-surface-map") + " star " + quote(mesh) + " " + quote(map) + " --refined " + quote(in) + " > /dev/null")
-              .code == 0);
-  const std::string source = fs::exists(in) ? in : mesh;
+  const auto [source, map] = coarse_thin_surface_map(d, "calibration_cube_thin", "star");
 
   auto map_case = [&](const std::string& tag, double time_limit, const std::string& options) {
     const std::string out = (d / (tag + "_out.mesh")).string(), refined = (d / (tag + "_refined.mesh")).string();
@@ -108,14 +118,9 @@ TEST_CASE("thin tentacles onto the pyramid: no boundary triangle is shrunk to a 
     return;
   }
   const fs::path d = volmap_test::scratch_dir("thin_tentacles_surface");
-  REQUIRE(run(tool("volmap-shapes") + " " + quote((d / "shapes").string()) + " --thin --format off > /dev/null").code == 0);
-  const std::string mesh = (d / "t.mesh").string(), map = (d / "t_pyr.txt").string(), in = (d / "t_pyr_in.mesh").string();
-  REQUIRE(run(tool("volmap-tetrahedralize") + " " + quote((d / "shapes" / "tentacles_thin.off").string()) + " " + quote(mesh) +
-              " --coarse > /dev/null")
-              .code == 0);
-  REQUIRE(run(tool("volmap-surface-map") + " pyr " + quote(mesh) + " " + quote(map) + " --refined " + quote(in) + " > /dev/null").code == 0);
-  CHECK(run(tool("volmap-surface-map-check") + " " + quote(fs::exists(in) ? in : mesh) + " " + quote(map) + " > /dev/null").code == 0);
-  const double smallest = smallest_relative_area(volmap::read_medit(fs::exists(in) ? in : mesh), volmap::read_boundary_map(map));
+  const auto [source, map] = coarse_thin_surface_map(d, "tentacles_thin", "pyr");
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(source) + " " + quote(map) + " > /dev/null").code == 0);
+  const double smallest = smallest_relative_area(volmap::read_medit(source), volmap::read_boundary_map(map));
   MESSAGE("tentacles_thin -> pyr: smallest relative triangle area " << smallest);
   CHECK(smallest > 1e-6);
 }
