@@ -1,18 +1,20 @@
 // self_intersection.cpp — exact triangle-surface self-intersection test (see self_intersection.hpp).
 //
 // Pipeline: validate ids/coordinates; flag degenerate triangles; find coincident vertices by sorting
-// positions; build a flat bounding-volume hierarchy over the triangle boxes (Morton order, halved
-// ranges, nodes in one array, no per-node heap storage); for every triangle, in parallel blocks,
-// query the BVH for the triangles after it (in BVH order) whose closed boxes overlap and run the
-// exact pair test chosen by how many vertex ids the two share. Box tests compare doubles only
-// (exact); every sign is an exact orient3d/orient2d, called unchecked inside one FpEnvironmentScope
-// per block of work (one MXCSR check per block instead of per call; predicates.hpp).
+// positions; build the flat bounding-volume hierarchy of box_tree.hpp over the triangle boxes; for
+// every triangle, in parallel blocks, query it for the triangles after it (in tree order) whose
+// closed boxes overlap and run the exact pair test chosen by how many vertex ids the two share. Box
+// tests compare doubles only (exact); every sign is an exact orient3d/orient2d, called unchecked
+// inside one FpEnvironmentScope per block of work (one MXCSR check per block instead of per call;
+// predicates.hpp).
 //
 // Why testing the six edges suffices for two closed triangles (non-adjacent case): their intersection
 // is a compact convex set; an extreme point of it cannot lie in the relative interior of both
 // triangles (a neighbourhood there would extend the intersection), so it lies on an edge of one
 // triangle and in the other. Hence T1 ∩ T2 ≠ ∅ iff some edge of one meets the other triangle.
 #include <volmap/check/self_intersection.hpp>
+
+#include <volmap/check/box_tree.hpp>
 
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
@@ -169,106 +171,6 @@ bool shared_vertex_pair(const FpEnvironmentScope& fp, const double* a, const dou
   return s1 * se >= 0 && s2 * se >= 0;
 }
 
-// ---------------------------------------------------------------- BVH ---------------------------
-struct Box {
-  double lo[3], hi[3];
-};
-inline bool overlap(const Box& x, const Box& y) {
-  return x.lo[0] <= y.hi[0] && y.lo[0] <= x.hi[0] && x.lo[1] <= y.hi[1] && y.lo[1] <= x.hi[1] &&
-         x.lo[2] <= y.hi[2] && y.lo[2] <= x.hi[2];
-}
-struct Node {
-  Box box;
-  std::uint32_t begin, end;  // the node's triangles are order[begin, end)
-  std::uint32_t left;        // inner: left child (right = left + 1); leaf: 0 (the root is nobody's child)
-};
-constexpr std::uint32_t kLeafSize = 4;
-
-struct Bvh {
-  std::vector<Node> nodes;
-  std::vector<std::uint32_t> order;  // triangle ids, leaves refer to ranges of it
-  std::vector<Box> leaf_boxes;       // boxes in `order` order (cache-friendly leaf scans)
-};
-
-// Spreads the low 10 bits of x so that there are two zero bits between consecutive bits.
-inline std::uint32_t spread_bits(std::uint32_t x) {
-  x &= 0x3FFu;
-  x = (x | (x << 16)) & 0x030000FFu;
-  x = (x | (x << 8)) & 0x0300F00Fu;
-  x = (x | (x << 4)) & 0x030C30C3u;
-  x = (x | (x << 2)) & 0x09249249u;
-  return x;
-}
-
-// Triangles are ordered along a Morton (Z-order) curve of their box centres (one sort of 64-bit
-// keys), the tree halves position ranges top-down, and boxes are merged bottom-up: O(n log n) for
-// the sort, O(n) for the rest. Children are created after their parent, so a reverse sweep over the
-// node array sees every child before its parent.
-Bvh build_bvh(const std::vector<Box>& boxes) {
-  const std::size_t n = boxes.size();
-  Bvh bvh;
-  bvh.order.resize(n);
-  if (n == 0) return bvh;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = boxes[0].lo[k];
-    hi[k] = boxes[0].hi[k];
-  }
-  for (const Box& box : boxes)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], box.lo[k]);
-      hi[k] = std::max(hi[k], box.hi[k]);
-    }
-  double scale[3];
-  for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? 1023.0 / (hi[k] - lo[k]) : 0.0;
-  std::vector<std::uint64_t> keys(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t code = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double c = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
-      const double q = std::min(1023.0, std::max(0.0, (c - lo[k]) * scale[k]));
-      code |= spread_bits(std::uint32_t(q)) << k;
-    }
-    keys[i] = (std::uint64_t(code) << 32) | std::uint64_t(i);
-  }
-  std::sort(keys.begin(), keys.end());
-  bvh.leaf_boxes.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    bvh.order[i] = std::uint32_t(keys[i] & 0xFFFFFFFFu);
-    bvh.leaf_boxes[i] = boxes[bvh.order[i]];
-  }
-  bvh.nodes.reserve(2 * (n / kLeafSize + 1));
-  bvh.nodes.push_back(Node{Box{}, 0, std::uint32_t(n), 0});
-  for (std::size_t at = 0; at < bvh.nodes.size(); ++at) {  // top-down: split ranges in half
-    const std::uint32_t begin = bvh.nodes[at].begin, end = bvh.nodes[at].end;
-    if (end - begin <= kLeafSize) continue;
-    const std::uint32_t mid = begin + (end - begin) / 2;
-    const std::uint32_t left = std::uint32_t(bvh.nodes.size());
-    bvh.nodes[at].left = left;
-    bvh.nodes.push_back(Node{Box{}, begin, mid, 0});
-    bvh.nodes.push_back(Node{Box{}, mid, end, 0});
-  }
-  for (std::size_t at = bvh.nodes.size(); at-- > 0;) {  // bottom-up boxes
-    Node& node = bvh.nodes[at];
-    if (node.left == 0) {
-      node.box = bvh.leaf_boxes[node.begin];
-      for (std::uint32_t i = node.begin + 1; i < node.end; ++i)
-        for (int k = 0; k < 3; ++k) {
-          node.box.lo[k] = std::min(node.box.lo[k], bvh.leaf_boxes[i].lo[k]);
-          node.box.hi[k] = std::max(node.box.hi[k], bvh.leaf_boxes[i].hi[k]);
-        }
-    } else {
-      const Box& l = bvh.nodes[node.left].box;
-      const Box& r = bvh.nodes[node.left + 1].box;
-      for (int k = 0; k < 3; ++k) {
-        node.box.lo[k] = std::min(l.lo[k], r.lo[k]);
-        node.box.hi[k] = std::max(l.hi[k], r.hi[k]);
-      }
-    }
-  }
-  return bvh;
-}
-
 // Per-block findings, merged in block order so the reported lists are deterministic.
 struct BlockResult {
   std::size_t pairs = 0;
@@ -401,14 +303,14 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   }
 
   // Boxes and degenerate triangles.
-  std::vector<Box> boxes(num_tris);
+  std::vector<Box3> boxes(num_tris);
   std::vector<std::uint8_t> degenerate(num_tris, 0);
   auto prepare = [&](std::size_t begin, std::size_t end) {
     const FpEnvironmentScope fp;  // per block: MXCSR is per thread
     for (std::size_t t = begin; t < end; ++t) {
       const std::uint32_t* tri = tris + 3 * t;
       const double *a = xyz + 3 * std::size_t(tri[0]), *b = xyz + 3 * std::size_t(tri[1]), *c = xyz + 3 * std::size_t(tri[2]);
-      Box& box = boxes[t];
+      Box3& box = boxes[t];
       for (int k = 0; k < 3; ++k) {
         box.lo[k] = std::min({a[k], b[k], c[k]});
         box.hi[k] = std::max({a[k], b[k], c[k]});
@@ -427,7 +329,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
     if (result.first_degenerate.size() < cap) result.first_degenerate.push_back(std::uint32_t(t));
   }
 
-  const Bvh bvh = build_bvh(boxes);
+  const BoxTree bvh = build_box_tree(boxes);
 
   // Query every triangle against the triangles after it in BVH leaf order ("position"): a node whose
   // positions all come before the query's is skipped, which halves the traversal and keeps queries
@@ -443,13 +345,13 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
     for (std::size_t position = block * kBlock; position < end; ++position) {
       const std::uint32_t t = bvh.order[position];
       if (degenerate[t]) continue;
-      const Box& query = bvh.leaf_boxes[position];
+      const Box3& query = bvh.leaf_boxes[position];
       const std::uint32_t after = std::uint32_t(position + 1);
       int top = 0;
       stack[top++] = 0;
       while (top > 0) {
-        const Node& node = bvh.nodes[stack[--top]];
-        if (node.end <= after || !overlap(node.box, query)) continue;
+        const BoxTree::Node& node = bvh.nodes[stack[--top]];
+        if (node.end <= after || !boxes_overlap(node.box, query)) continue;
         if (node.left != 0) {
           stack[top++] = node.left;
           stack[top++] = node.left + 1;
@@ -457,7 +359,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
         }
         for (std::uint32_t i = std::max(node.begin, after); i < node.end; ++i) {
           const std::uint32_t u = bvh.order[i];
-          if (degenerate[u] || !overlap(bvh.leaf_boxes[i], query)) continue;
+          if (degenerate[u] || !boxes_overlap(bvh.leaf_boxes[i], query)) continue;
           ++out.candidates;
           const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
           if (triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {

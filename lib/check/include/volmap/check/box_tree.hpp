@@ -1,0 +1,61 @@
+// volmap/check/box_tree.hpp — a flat bounding-volume hierarchy over axis-aligned boxes (one per item,
+// e.g. a triangle's bounding box), for "which items may touch this box?" queries.
+// Conventions: boxes are closed (touching boxes overlap); comparisons are plain double comparisons,
+// which are exact, so a query never misses an item whose box touches the query box. Items are ordered
+// along a Morton (Z-order) curve of their box centres; the tree halves that order top-down (leaves of
+// at most kBoxTreeLeafSize items), so `order` is the items' position along the curve and every node
+// covers a contiguous range [begin, end) of positions. Nodes live in one array; a parent comes before
+// its children, the children of an inner node are `left` and `left + 1`, and `left == 0` marks a leaf.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace volmap {
+
+struct Box3 {
+  double lo[3], hi[3];
+};
+
+inline bool boxes_overlap(const Box3& x, const Box3& y) {
+  return x.lo[0] <= y.hi[0] && y.lo[0] <= x.hi[0] && x.lo[1] <= y.hi[1] && y.lo[1] <= x.hi[1] &&
+         x.lo[2] <= y.hi[2] && y.lo[2] <= x.hi[2];
+}
+
+inline constexpr std::uint32_t kBoxTreeLeafSize = 4;
+
+struct BoxTree {
+  struct Node {
+    Box3 box;
+    std::uint32_t begin, end;  // the node's items are order[begin, end)
+    std::uint32_t left;        // inner: left child (right = left + 1); leaf: 0
+  };
+  std::vector<Node> nodes;
+  std::vector<std::uint32_t> order;  // item ids by position
+  std::vector<Box3> leaf_boxes;      // the items' boxes by position (cache-friendly leaf scans)
+
+  // Calls visit(item) for every item whose box overlaps `query` (in position order).
+  template <class Visit>
+  void for_each_overlapping(const Box3& query, Visit&& visit) const {
+    if (nodes.empty()) return;
+    std::uint32_t stack[96];  // the depth is about log2(items / leaf size): far below 96
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes[stack[--top]];
+      if (!boxes_overlap(node.box, query)) continue;
+      if (node.left != 0) {
+        stack[top++] = node.left;
+        stack[top++] = node.left + 1;
+        continue;
+      }
+      for (std::uint32_t i = node.begin; i < node.end; ++i)
+        if (boxes_overlap(leaf_boxes[i], query)) visit(order[i]);
+    }
+  }
+};
+
+// Builds the tree over boxes[0..n): O(n log n) (one sort of 64-bit Morton keys), the rest O(n).
+BoxTree build_box_tree(const std::vector<Box3>& boxes);
+
+}  // namespace volmap
