@@ -259,12 +259,13 @@ TEST_CASE("B0 cone patch: a cube coned from a corner (no interior vertex) onto a
   CHECK(r.source.num_tets() < old_b0.tets_after);
 }
 
-TEST_CASE("B0: a fixed inverted tet without a blocking chord — one 2-3 flip towards the free vertex across it, then a certified map") {
+TEST_CASE("B0: a fixed inverted tet under a dent — one 2-3 flip towards the free vertex across it, then a certified map") {
   // Source: a tetrahedron (p0,p1,p2,p3) coned from its interior point e, and the tet (p0,p1,p2,d) on
   // its face p0p1p2, d below. Target: d lifted above that face (a dent), the rest as in the source.
-  // (p0,p1,p2,d) is then fixed and inverted, yet no chord blocks: its interior face p0p1p2 has the
-  // free e across. The flip of p0p1p2 leaves the cone from e over the six faces of ∂M, which maps
-  // validly with e in the dented polyhedron's kernel (near p3).
+  // (p0,p1,p2,d) is then fixed and inverted. No chord edge blocks, and its interior face p0p1p2 has
+  // the free e across, but that face's image lies below the dent, outside the target solid: it
+  // blocks (boundary_image_solid.hpp). The flip of p0p1p2 leaves the cone from e over the six faces
+  // of ∂M, which maps validly with e in the dented polyhedron's kernel (near p3).
   volmap::TetMeshData m;
   m.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3, 0.3, 1, 0.3, 0.3, -0.5, 0.325, 0.325, 0.25};
   const std::uint32_t e = 5, d = 4;
@@ -280,7 +281,8 @@ TEST_CASE("B0: a fixed inverted tet without a blocking chord — one 2-3 flip to
   const auto report = volmap::analyze_feasibility(state);
   REQUIRE(report.fixed_nonpositive_tets.size() == 1);
   CHECK(report.blocking_chord_edges.empty());
-  CHECK(report.blocking_chord_faces.empty());
+  REQUIRE(report.blocking_chord_faces.size() == 1);
+  CHECK(report.blocking_chord_faces[0] == std::array<std::uint32_t, 3>{0, 1, 2});
   CHECK(report.boundary_volume_sign > 0);
 
   const auto boundary = mesh_test::oriented_boundary(state.source);

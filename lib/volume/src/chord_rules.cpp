@@ -3,6 +3,7 @@
 
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
+#include <volmap/volume/radial_start.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,7 @@ ChordRules::ChordRules(const TetMesh& mesh, const std::vector<std::uint8_t>& loc
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
   for (std::size_t k = 0; k < tris.size(); ++k)
     for (std::uint32_t v : tris[k]) planes_[fill[v]++] = planes[k];
+  if (!boundary_image_is_convex(mesh, target_)) solid_ = std::make_unique<BoundaryImageSolid>(mesh, target_);
 }
 
 bool ChordRules::in_facet_plane_at(std::uint32_t a, const std::uint32_t* others, int n) const {
@@ -80,14 +82,22 @@ bool ChordRules::in_facet_plane_at(std::uint32_t a, const std::uint32_t* others,
 
 bool ChordRules::edge_blocks(std::uint32_t a, std::uint32_t b) const {
   if (!locked(a) || !locked(b)) return false;
-  return points_equal(image(a), image(b)) || in_facet_plane_at(a, &b, 1) || in_facet_plane_at(b, &a, 1);
+  if (points_equal(image(a), image(b)) || in_facet_plane_at(a, &b, 1) || in_facet_plane_at(b, &a, 1)) return true;
+  if (!solid_) return false;
+  const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+  const auto known = edge_leaves_.find(key);
+  if (known != edge_leaves_.end()) return known->second;
+  const bool leaves = solid_->segment_leaves(a, b);
+  edge_leaves_.emplace(key, leaves);
+  return leaves;
 }
 
 bool ChordRules::face_image_blocks(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
   if (!locked(a) || !locked(b) || !locked(c)) return false;
   std::array<std::uint32_t, 3> k = {a, b, c};
   std::sort(k.begin(), k.end());
-  return collinear(image(k[0]), image(k[1]), image(k[2])) || in_facet_plane_at(k[0], &k[1], 2);
+  if (collinear(image(k[0]), image(k[1]), image(k[2])) || in_facet_plane_at(k[0], &k[1], 2)) return true;
+  return solid_ && solid_->triangle_leaves(k[0], k[1], k[2]);
 }
 
 bool ChordRules::fixed_tet_nonpositive(const std::array<std::uint32_t, 4>& v) const {

@@ -2,6 +2,8 @@
 // every map at fixed connectivity (docs/mapping.md §3)? The rules, for one source mesh and its
 // prescribed boundary images, usable on the mesh as it is edited by B0 (§4): ∂M never changes, so
 // the boundary triangles at each boundary vertex are captured once; vertices added later are free.
+// On a non-convex boundary image (boundary_image_is_convex false) a chord also blocks when its
+// straight image leaves the solid the image bounds (boundary_image_solid.hpp).
 // Conventions: boundary triangles outward (a point p is inside the domain next to the outward
 // triangle (a,b,c) iff orient3d(a,b,c,p) > 0); signs are exact (volmap predicates); only "lies in the
 // plane of a boundary triangle" uses a tolerance (1e-6 × the largest extent of the boundary image),
@@ -9,10 +11,13 @@
 #pragma once
 
 #include <volmap/core/tet_mesh.hpp>
+#include <volmap/volume/boundary_image_solid.hpp>
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace volmap {
@@ -35,10 +40,13 @@ class ChordRules {
   double tolerance() const { return tol_; }
 
   // An interior edge (a, b) with both ends locked blocks when its image lies in ∂D: the images
-  // coincide, or one end's image lies in the plane of a boundary triangle at the other end.
+  // coincide, or one end's image lies in the plane of a boundary triangle at the other end; or, on
+  // a non-convex image, when its image leaves D (BoundaryImageSolid::segment_leaves; remembered per
+  // edge, so the rules are not to be queried from several threads).
   bool edge_blocks(std::uint32_t a, std::uint32_t b) const;
   // An interior face (a, b, c) with all three locked blocks (whatever its apexes) when its image is
-  // degenerate (exactly collinear) or lies in the plane of a boundary triangle at its smallest id.
+  // degenerate (exactly collinear) or lies in the plane of a boundary triangle at its smallest id;
+  // or, on a non-convex image, when its image leaves D (BoundaryImageSolid::triangle_leaves).
   bool face_image_blocks(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // A tet whose four vertices are locked has a fixed image: true when that image is not strictly
   // positive. (An interior face whose two tets are both fixed blocks exactly when one of them is.)
@@ -55,6 +63,8 @@ class ChordRules {
   // normal and the normal's length; triangles degenerate in double are left out (no plane).
   std::vector<std::uint32_t> offsets_;
   std::vector<std::array<double, 7>> planes_;
+  std::unique_ptr<BoundaryImageSolid> solid_;  // only for a non-convex image
+  mutable std::unordered_map<std::uint64_t, bool> edge_leaves_;
 };
 
 }  // namespace volmap

@@ -1,0 +1,209 @@
+// Chords whose straight image leaves a non-convex domain (docs/mapping.md §3, boundary_image_solid.hpp).
+// Oracles are analytic: an L-shaped solid meshed and mapped by the identity (point membership and
+// segments between boundary vertices against the two boxes, sampled at rational parameters that hit
+// the reflex edge exactly), and VOLMAP's star domain written as 24 triangles, onto which the
+// boundary of a coarse Kuhn cube is projected from the centre (chords sampled against the union of
+// the cube and its six pyramids). The mapper must then certify with B0 removing those chords.
+#include <doctest/doctest.h>
+
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/volume/boundary_image_solid.hpp>
+#include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/map_stages.hpp>
+#include <volmap/volume/map_state.hpp>
+#include <volmap/volume/volume_map.hpp>
+#include <volmap/predicates.hpp>
+
+#include "map_test_meshes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+namespace {
+
+using P3 = std::array<double, 3>;
+
+// [0,2]×[0,2]×[0,2] minus the block x > 1, y > 1: a Kuhn grid of 2×2×2 cells without the two cells
+// of that block; the unused corner vertices are dropped.
+volmap::TetMeshData l_shape() {
+  const volmap::TetMeshData grid = volmap::generate_kuhn_grid(2, 2, 2, 1.0);
+  volmap::TetMeshData m;
+  std::vector<std::uint32_t> new_id(grid.num_vertices(), UINT32_MAX);
+  for (std::size_t t = 0; t < grid.num_tets(); ++t) {
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 3; ++i) c[i] += grid.xyz[3 * grid.tets[4 * t + k] + i] / 4;
+    if (c[0] > 1 && c[1] > 1) continue;
+    for (int k = 0; k < 4; ++k) {
+      const std::uint32_t v = grid.tets[4 * t + k];
+      if (new_id[v] == UINT32_MAX) {
+        new_id[v] = std::uint32_t(m.num_vertices());
+        for (int i = 0; i < 3; ++i) m.xyz.push_back(grid.xyz[3 * v + i]);
+      }
+      m.tets.push_back(new_id[v]);
+    }
+  }
+  m.tet_labels.assign(m.num_tets(), 0);
+  return m;
+}
+
+// Strictly inside the open L-shape, by a margin.
+bool in_l(const double* p, double margin) {
+  for (int i = 0; i < 3; ++i)
+    if (!(p[i] > margin && p[i] < 2 - margin)) return false;
+  return p[0] < 1 - margin || p[1] < 1 - margin;
+}
+
+// VOLMAP's star (domain.cpp): the cube [0,100]^3 with a pyramid of height 100 on each face.
+struct Star {
+  std::vector<std::array<P3, 3>> tris;  // outward
+  Star() {
+    const P3 apex[6] = {{-100, 50, 50}, {200, 50, 50}, {50, -100, 50}, {50, 200, 50}, {50, 50, -100}, {50, 50, 200}};
+    for (int k = 0; k < 6; ++k) {
+      const int axis = k / 2;
+      const double at = k % 2 ? 100 : 0;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      const double corner[4][2] = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+      for (int j = 0; j < 4; ++j) {
+        P3 a{}, b{};
+        a[axis] = b[axis] = at;
+        a[u] = corner[j][0], a[w] = corner[j][1];
+        b[u] = corner[(j + 1) % 4][0], b[w] = corner[(j + 1) % 4][1];
+        // Outward: the cube's centre sees (apex, a, b) or (apex, b, a) on its inner side.
+        const P3 centre{50, 50, 50};
+        std::array<P3, 3> t{apex[k], a, b};
+        if (volmap::orient3d(t[0].data(), t[1].data(), t[2].data(), centre.data()) < 0) std::swap(t[1], t[2]);
+        tris.push_back(t);
+      }
+    }
+  }
+  // Closed membership with a tolerance (eps > 0 grows the star, eps < 0 shrinks it).
+  static bool contains(const P3& p, double eps) {
+    bool in_cube = true;
+    for (double c : p) in_cube = in_cube && c >= -eps && c <= 100 + eps;
+    if (in_cube) return true;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        const double depth = side ? p[axis] - 100 : -p[axis];
+        if (depth < -eps || depth > 100 + eps) continue;
+        const double half = 50 * (1 - depth / 100) + eps;
+        bool inside = true;
+        for (int i = 0; i < 3; ++i)
+          if (i != axis) inside = inside && std::abs(p[i] - 50) <= half;
+        if (inside) return true;
+      }
+    return false;
+  }
+  // Where the ray from the centre along u leaves the star (it is star-shaped about the centre).
+  P3 project(const P3& u) const {
+    const P3 c{50, 50, 50};
+    double best = 1e300;
+    for (const auto& t : tris) {  // Möller–Trumbore in doubles; the image only has to be near ∂star
+      P3 e1, e2, s, h, q;
+      for (int i = 0; i < 3; ++i) e1[i] = t[1][i] - t[0][i], e2[i] = t[2][i] - t[0][i], s[i] = c[i] - t[0][i];
+      h = {u[1] * e2[2] - u[2] * e2[1], u[2] * e2[0] - u[0] * e2[2], u[0] * e2[1] - u[1] * e2[0]};
+      const double det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+      if (std::abs(det) < 1e-14) continue;
+      const double beta = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / det;
+      q = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+      const double gamma = (u[0] * q[0] + u[1] * q[1] + u[2] * q[2]) / det;
+      const double tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+      if (beta >= -1e-12 && gamma >= -1e-12 && beta + gamma <= 1 + 1e-12 && tt > 0) best = std::min(best, tt);
+    }
+    return {c[0] + best * u[0], c[1] + best * u[1], c[2] + best * u[2]};
+  }
+};
+
+}  // namespace
+
+TEST_CASE("boundary image solid: an L-shaped solid under the identity — points and chords against the two boxes") {
+  const volmap::TetMeshData m = l_shape();
+  REQUIRE(m.num_tets() == 36);
+  const volmap::TetMesh mesh(m);
+  const volmap::BoundaryImageSolid solid(mesh, m.xyz);
+  std::size_t checked = 0;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j)
+      for (int k = 0; k <= 20; ++k) {
+        const double p[3] = {-0.05 + 0.105 * i, -0.05 + 0.105 * j, -0.05 + 0.105 * k};
+        const bool near = !in_l(p, 1e-9) && in_l(p, -1e-9);  // within 1e-9 of ∂L: not decided here
+        if (near) continue;
+        CHECK(solid.contains(p) == in_l(p, 0));
+        ++checked;
+      }
+  CHECK(checked > 8000);
+  // Every pair of boundary vertices: the segment leaves unless its inner samples are strictly inside
+  // (the reflex edge x = y = 1 is met at parameters with small denominators, all sampled).
+  const std::vector<std::uint32_t> bv = volmap::boundary_vertex_ids(m);
+  std::size_t leaving = 0, inside = 0;
+  for (std::size_t x = 0; x < bv.size(); ++x)
+    for (std::size_t y = x + 1; y < bv.size(); ++y) {
+      const double *a = &m.xyz[3 * bv[x]], *b = &m.xyz[3 * bv[y]];
+      bool all_inside = true;
+      for (int s = 1; s < 840 && all_inside; ++s) {
+        const double t = s / 840.0;
+        const double p[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+        all_inside = in_l(p, 1e-12);
+      }
+      INFO("vertices " << bv[x] << " " << bv[y]);
+      CHECK(solid.segment_leaves(bv[x], bv[y]) == !all_inside);
+      (all_inside ? inside : leaving) += 1;
+    }
+  MESSAGE("L-shape: " << leaving << " boundary-vertex segments leave, " << inside << " stay inside");
+  CHECK(leaving > 0);
+  CHECK(inside > 0);
+  // The mesh's own interior edges and faces are inside (the identity is a valid map).
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    const std::uint32_t* v = &m.tets[4 * t];
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        if (std::count(bv.begin(), bv.end(), v[a]) && std::count(bv.begin(), bv.end(), v[b])) {
+          const double* p = &m.xyz[3 * v[a]];
+          const double* q = &m.xyz[3 * v[b]];
+          const double mid[3] = {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
+          if (in_l(mid, 1e-12)) CHECK_FALSE(solid.segment_leaves(v[a], v[b]));
+        }
+  }
+}
+
+TEST_CASE("B0 on the star: chords across a valley are blocking, and the refined map certifies") {
+  const volmap::TetMeshData cube = map_test::kuhn_grid(3);  // 162 tets, 8 interior vertices
+  const Star star;
+  volmap::BoundaryMap map;
+  for (std::uint32_t v : volmap::boundary_vertex_ids(cube)) {
+    const P3 u{cube.xyz[3 * v] - 0.5, cube.xyz[3 * v + 1] - 0.5, cube.xyz[3 * v + 2] - 0.5};
+    const P3 p = star.project(u);
+    map.vids.push_back(v);
+    map.xyz.insert(map.xyz.end(), p.begin(), p.end());
+  }
+  volmap::MapState state(cube, map);
+  const volmap::FeasibilityReport report = volmap::analyze_feasibility(state);
+  const std::set<std::array<std::uint32_t, 2>> blocking(report.blocking_chord_edges.begin(), report.blocking_chord_edges.end());
+  const std::vector<double>& target = state.target_xyz();
+  std::size_t outside = 0;
+  for (const auto& e : report.chord_edges) {
+    const double *a = &target[3 * e[0]], *b = &target[3 * e[1]];
+    bool leaves = false;
+    for (int s = 1; s < 64 && !leaves; ++s) {
+      const double t = s / 64.0;
+      leaves = !Star::contains({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}, 1e-3);
+    }
+    if (!leaves) continue;
+    ++outside;
+    INFO("chord " << e[0] << " " << e[1]);
+    CHECK(blocking.count({std::min(e[0], e[1]), std::max(e[0], e[1])}) == 1);
+  }
+  MESSAGE("Kuhn cube 3 -> star: " << report.chord_edges.size() << " chord edges, " << outside << " pass outside the star, "
+                                  << report.blocking_chord_edges.size() << " blocking");
+  REQUIRE(outside > 0);
+
+  volmap::VolumeMapOptions options;
+  options.max_threads = 1;
+  options.time_limit_seconds = 30;
+  const auto r = volmap::compute_volume_map(cube, map, options);
+  CHECK(r.certified);
+  CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
+  CHECK(volmap::count_nonpositive(r.source.xyz, r.source.tets) == 0);
+}
