@@ -207,8 +207,10 @@ int main(int argc, char** argv) {
         for (const auto& c : r.infeasibility) {
           std::vector<std::string> multipliers;
           for (const auto& m : c.multipliers) multipliers.push_back(m.str());
-          certificates.push_back({{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
-                                  {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}});
+          nlohmann::json certificate = {{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
+                                        {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}};
+          if (!c.boundary_face.empty()) certificate["boundary_face"] = c.boundary_face;
+          certificates.push_back(std::move(certificate));
         }
         j["infeasible"] = {{"scope", "this-connectivity"},
                            {"reason", "exact local certificate: no map with every tet positive exists at the input connectivity"},

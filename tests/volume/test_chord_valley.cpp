@@ -3,22 +3,28 @@
 // segments between boundary vertices against the two boxes, sampled at rational parameters that hit
 // the reflex edge exactly), and VOLMAP's star domain written as 24 triangles, onto which the
 // boundary of a coarse Kuhn cube is projected from the centre (chords sampled against the union of
-// the cube and its six pyramids). The mapper must then certify with B0 removing those chords.
+// the cube and its six pyramids). The mapper must then certify with B0 removing those chords. At
+// fixed connectivity, a chord whose image crosses a dented boundary gets an exact certificate,
+// confirmed by solving the segment-triangle intersection in rationals here.
 #include <doctest/doctest.h>
 
+#include <volmap/check/self_intersection.hpp>
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/volume/boundary_image_solid.hpp>
 #include <volmap/volume/feasibility.hpp>
+#include <volmap/volume/infeasibility.hpp>
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/map_state.hpp>
 #include <volmap/volume/volume_map.hpp>
 #include <volmap/predicates.hpp>
+#include <volmap/predicates_rational.hpp>
 
 #include "map_test_meshes.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <set>
 
 namespace {
@@ -116,6 +122,47 @@ struct Star {
   }
 };
 
+// The boundary of the Kuhn cube with n cells per side, projected from its centre onto the star.
+volmap::BoundaryMap star_map_of(const volmap::TetMeshData& cube) {
+  const Star star;
+  volmap::BoundaryMap map;
+  for (std::uint32_t v : volmap::boundary_vertex_ids(cube)) {
+    const P3 u{cube.xyz[3 * v] - 0.5, cube.xyz[3 * v + 1] - 0.5, cube.xyz[3 * v + 2] - 0.5};
+    const P3 p = star.project(u);
+    map.vids.push_back(v);
+    map.xyz.insert(map.xyz.end(), p.begin(), p.end());
+  }
+  return map;
+}
+
+// Does the closed segment pq meet the closed triangle abc? Cramer's rule in rationals on
+// p + t (q − p) = a + u (b − a) + w (c − a); a segment parallel to the triangle's plane counts as
+// "no" (the certificates under test never need that case).
+bool rational_segment_meets_triangle(const double* p, const double* q, const double* a, const double* b, const double* c) {
+  using volmap::Rational;
+  Rational m[3][3], r[3];
+  for (int i = 0; i < 3; ++i) {
+    m[i][0] = Rational(q[i]) - Rational(p[i]);   // t
+    m[i][1] = Rational(a[i]) - Rational(b[i]);   // u (moved to the left side)
+    m[i][2] = Rational(a[i]) - Rational(c[i]);   // w
+    r[i] = Rational(a[i]) - Rational(p[i]);
+  }
+  auto det = [](const Rational (&x)[3][3]) {
+    return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+           x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+  };
+  const Rational d = det(m);
+  if (d == 0) return false;
+  Rational sol[3];
+  for (int k = 0; k < 3; ++k) {
+    Rational mk[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) mk[i][j] = j == k ? r[i] : m[i][j];
+    sol[k] = det(mk) / d;
+  }
+  return sol[0] >= 0 && sol[0] <= 1 && sol[1] >= 0 && sol[2] >= 0 && sol[1] + sol[2] <= 1;
+}
+
 }  // namespace
 
 TEST_CASE("boundary image solid: an L-shaped solid under the identity — points and chords against the two boxes") {
@@ -170,14 +217,7 @@ TEST_CASE("boundary image solid: an L-shaped solid under the identity — points
 
 TEST_CASE("B0 on the star: chords across a valley are blocking, and the refined map certifies") {
   const volmap::TetMeshData cube = map_test::kuhn_grid(3);  // 162 tets, 8 interior vertices
-  const Star star;
-  volmap::BoundaryMap map;
-  for (std::uint32_t v : volmap::boundary_vertex_ids(cube)) {
-    const P3 u{cube.xyz[3 * v] - 0.5, cube.xyz[3 * v + 1] - 0.5, cube.xyz[3 * v + 2] - 0.5};
-    const P3 p = star.project(u);
-    map.vids.push_back(v);
-    map.xyz.insert(map.xyz.end(), p.begin(), p.end());
-  }
+  const volmap::BoundaryMap map = star_map_of(cube);
   volmap::MapState state(cube, map);
   const volmap::FeasibilityReport report = volmap::analyze_feasibility(state);
   const std::set<std::array<std::uint32_t, 2>> blocking(report.blocking_chord_edges.begin(), report.blocking_chord_edges.end());
@@ -206,4 +246,96 @@ TEST_CASE("B0 on the star: chords across a valley are blocking, and the refined 
   CHECK(r.certified);
   CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
   CHECK(volmap::count_nonpositive(r.source.xyz, r.source.tets) == 0);
+}
+
+TEST_CASE("fixed connectivity: a chord whose image crosses a dented boundary face gets an exact certificate, confirmed in rationals") {
+  // Kuhn grid 2 (one interior vertex; its chords join boundary vertices through one cell). Boundary
+  // images: the grid's own positions with every boundary vertex moved by up to 0.45 (seeded). The
+  // first draw whose image is embedded (exact self-intersection test) and in which some chord's image
+  // meets a boundary face away from its ends (rational oracle below) is the case.
+  const volmap::TetMeshData cube = map_test::kuhn_grid(2);
+  const std::vector<std::uint32_t> bv = volmap::boundary_vertex_ids(cube);
+  std::vector<std::uint8_t> locked(cube.num_vertices(), 0);
+  for (std::uint32_t v : bv) locked[v] = 1;
+  std::set<std::array<std::uint32_t, 3>> faces;
+  std::set<std::array<std::uint32_t, 2>> boundary_edges;
+  std::vector<std::uint32_t> tris;
+  for (std::uint64_t h : volmap::boundary_half_faces(cube)) {
+    auto f = volmap::half_face_vertices(cube, h);
+    tris.insert(tris.end(), f.begin(), f.end());
+    std::sort(f.begin(), f.end());
+    faces.insert(f);
+    boundary_edges.insert({f[0], f[1]});
+    boundary_edges.insert({f[1], f[2]});
+    boundary_edges.insert({f[0], f[2]});
+  }
+  std::set<std::array<std::uint32_t, 2>> chords;
+  for (std::size_t t = 0; t < cube.num_tets(); ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const std::uint32_t a = std::min(cube.tets[4 * t + i], cube.tets[4 * t + j]), b = std::max(cube.tets[4 * t + i], cube.tets[4 * t + j]);
+        if (locked[a] && locked[b] && !boundary_edges.count({a, b})) chords.insert({a, b});
+      }
+  REQUIRE(!chords.empty());
+  auto crossing = [&](const std::vector<double>& X, const std::array<std::uint32_t, 2>& e, const std::array<std::uint32_t, 3>& f) {
+    if (std::count(f.begin(), f.end(), e[0]) || std::count(f.begin(), f.end(), e[1])) return false;
+    return rational_segment_meets_triangle(&X[3 * e[0]], &X[3 * e[1]], &X[3 * f[0]], &X[3 * f[1]], &X[3 * f[2]]);
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> shift(-0.45, 0.45);
+  std::vector<double> target;
+  std::size_t crossings = 0;
+  int draw = 0;
+  for (; draw < 5000 && crossings == 0; ++draw) {
+    target = cube.xyz;
+    for (std::uint32_t v : bv)
+      for (int i = 0; i < 3; ++i) target[3 * v + i] += shift(rng);
+    if (!volmap::find_self_intersections(target, tris).clean()) continue;
+    for (const auto& e : chords)
+      for (const auto& f : faces) crossings += crossing(target, e, f);
+  }
+  MESSAGE("draw " << draw << ": " << crossings << " (chord, boundary face) crossings");
+  REQUIRE(crossings > 0);
+
+  volmap::InfeasibilityOptions options;
+  options.max_certificates = 0;
+  const auto certificates = volmap::find_local_infeasibility(volmap::TetMesh(cube), locked, target, options);
+  std::size_t found = 0;
+  for (const auto& c : certificates) {
+    if (c.kind != volmap::InfeasibilityKind::ChordTouchesBoundary) continue;
+    ++found;
+    INFO(volmap::describe(c));
+    REQUIRE(c.simplex.size() == 2);
+    REQUIRE(c.boundary_face.size() == 3);
+    const std::array<std::uint32_t, 2> e = {std::min(c.simplex[0], c.simplex[1]), std::max(c.simplex[0], c.simplex[1])};
+    CHECK(chords.count(e) == 1);
+    const std::uint32_t* t = &cube.tets[4 * c.tet];
+    CHECK(std::count(t, t + 4, e[0]) == 1);
+    CHECK(std::count(t, t + 4, e[1]) == 1);
+    std::array<std::uint32_t, 3> f = {c.boundary_face[0], c.boundary_face[1], c.boundary_face[2]};
+    std::sort(f.begin(), f.end());
+    CHECK(faces.count(f) == 1);
+    CHECK(crossing(target, e, f));
+  }
+  // Every crossing chord is found (one certificate per chord: the first face it meets).
+  std::set<std::array<std::uint32_t, 2>> crossing_chords;
+  for (const auto& e : chords)
+    for (const auto& f : faces)
+      if (crossing(target, e, f)) crossing_chords.insert(e);
+  CHECK(found == crossing_chords.size());
+
+  // The mapper at fixed connectivity reports the certificate and claims no map.
+  volmap::BoundaryMap map;
+  for (std::uint32_t v : bv) {
+    map.vids.push_back(v);
+    map.xyz.insert(map.xyz.end(), &target[3 * v], &target[3 * v] + 3);
+  }
+  volmap::VolumeMapOptions mo;
+  mo.allow_refinement = false;
+  mo.max_threads = 1;
+  mo.time_limit_seconds = 10;
+  const auto r = volmap::compute_volume_map(cube, map, mo);
+  CHECK_FALSE(r.certified);
+  CHECK(std::any_of(r.infeasibility.begin(), r.infeasibility.end(),
+                    [](const auto& c) { return c.kind == volmap::InfeasibilityKind::ChordTouchesBoundary; }));
 }

@@ -56,17 +56,17 @@ BoundaryImageSolid::BoundaryImageSolid(const TetMesh& mesh, const std::vector<do
   }
 }
 
-bool BoundaryImageSolid::segment_touches_boundary(std::uint32_t a, std::uint32_t b) const {
+std::uint32_t BoundaryImageSolid::touched_triangle(std::uint32_t a, std::uint32_t b) const {
   const double *pa = image(a), *pb = image(b);
-  bool touches = false;
+  std::uint32_t touched = kNone;
   tree_.for_each_overlapping(box_of({pa, pb}), [&](std::uint32_t f) {
-    if (touches) return;
+    if (touched != kNone) return;
     const auto& t = tris_[f];
     for (std::uint32_t v : t)
       if (v == a || v == b) return;
-    touches = segment_intersects_triangle(pa, pb, image(t[0]), image(t[1]), image(t[2]));
+    if (segment_intersects_triangle(pa, pb, image(t[0]), image(t[1]), image(t[2]))) touched = f;
   });
-  return touches;
+  return touched;
 }
 
 bool BoundaryImageSolid::triangle_touches_boundary(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {

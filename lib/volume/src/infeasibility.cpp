@@ -4,8 +4,11 @@
 // exact rationals only.
 #include <volmap/volume/infeasibility.hpp>
 
+#include <volmap/check/self_intersection.hpp>
 #include <volmap/core/error.hpp>
+#include <volmap/volume/boundary_image_solid.hpp>
 #include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/radial_start.hpp>
 
 #include <algorithm>
 #include <array>
@@ -92,6 +95,37 @@ bool locked_link_face(const TetMesh& mesh, const std::vector<std::uint8_t>& lock
 
 const double* at(const std::vector<double>& X, std::uint32_t v) { return X.data() + 3 * std::size_t(v); }
 
+// Is (a, b) an edge of a face of ∂M?
+bool edge_on_boundary(const TetMesh& mesh, std::uint32_t a, std::uint32_t b) {
+  for (HalfFaceId h : mesh.boundary_half_faces()) {
+    const auto f = mesh.half_face_vertices(h);
+    int hits = 0;
+    for (VertexId v : f) hits += v.idx() == a || v.idx() == b;
+    if (hits == 2) return true;
+  }
+  return false;
+}
+
+// Is (a, b, c), in any order, a face of ∂M?
+bool is_boundary_face(const TetMesh& mesh, std::array<std::uint32_t, 3> abc) {
+  std::sort(abc.begin(), abc.end());
+  for (HalfFaceId h : mesh.boundary_half_faces()) {
+    const auto f = mesh.half_face_vertices(h);
+    std::array<std::uint32_t, 3> g = {f[0].idx(), f[1].idx(), f[2].idx()};
+    std::sort(g.begin(), g.end());
+    if (g == abc) return true;
+  }
+  return false;
+}
+
+// The images of ∂M's faces form an embedded surface (exact).
+bool boundary_image_embedded(const TetMesh& mesh, const std::vector<double>& X) {
+  std::vector<std::uint32_t> tris;
+  for (HalfFaceId h : mesh.boundary_half_faces())
+    for (VertexId v : mesh.half_face_vertices(h)) tris.push_back(v.idx());
+  return find_self_intersections(X.data(), X.size() / 3, tris.data(), tris.size() / 3).clean();
+}
+
 class CertificateSearch {
  public:
   CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
@@ -102,6 +136,7 @@ class CertificateSearch {
     fixed_tets();
     coincident_edges();
     degenerate_faces();
+    chords_touching_boundary();
     empty_link_kernels();
     return std::move(found_);
   }
@@ -151,6 +186,22 @@ class CertificateSearch {
       const std::uint32_t v[3] = {f[0].idx(), f[1].idx(), f[2].idx()};
       if (all_locked(v, 3) && collinear(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
         keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}});
+    }
+  }
+
+  // Only on a clearly non-convex image: on a convex one a chord meets ∂D only inside a facet, which
+  // DegenerateFace, FixedTet or the untanglers' own count already expose.
+  void chords_touching_boundary() {
+    if (full() || boundary_image_is_convex(mesh_, X_)) return;
+    const BoundaryImageSolid solid(mesh_, X_);
+    for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
+      const auto ends = mesh_.edge_vertices(EdgeId(e));
+      const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
+      if (!all_locked(v, 2) || edge_on_boundary(mesh_, v[0], v[1])) continue;
+      const std::uint32_t f = solid.touched_triangle(v[0], v[1]);
+      if (f == BoundaryImageSolid::kNone) continue;
+      const auto& t = solid.triangle(f);
+      keep({InfeasibilityKind::ChordTouchesBoundary, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {t[0], t[1], t[2]}});
     }
   }
 
@@ -233,6 +284,7 @@ const char* infeasibility_kind_name(InfeasibilityKind kind) {
     case InfeasibilityKind::FixedTet: return "fixed-tet";
     case InfeasibilityKind::CoincidentEdge: return "coincident-edge";
     case InfeasibilityKind::DegenerateFace: return "degenerate-face";
+    case InfeasibilityKind::ChordTouchesBoundary: return "chord-touches-boundary";
     case InfeasibilityKind::EmptyLinkKernel: return "empty-link-kernel";
   }
   return "?";
@@ -252,6 +304,9 @@ std::string describe(const InfeasibilityCertificate& c) {
       return s + "fixed vertices " + ids(c.simplex) + " have the same image: tet " + std::to_string(c.tet) + " is flat";
     case InfeasibilityKind::DegenerateFace:
       return s + "fixed vertices " + ids(c.simplex) + " have collinear images: tet " + std::to_string(c.tet) + " is flat";
+    case InfeasibilityKind::ChordTouchesBoundary:
+      return s + "the image of the interior edge between fixed vertices " + ids(c.simplex) + " (tet " + std::to_string(c.tet) +
+             ") meets the image of the boundary face " + ids(c.boundary_face);
     case InfeasibilityKind::EmptyLinkKernel:
       s += "free vertex " + ids(c.simplex) + ": the fixed link faces of tets";
       for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
@@ -299,6 +354,16 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
       if (c.simplex.size() != 3 || !simplex_locked() || !in_tet(c.tet)) return false;
       const std::uint32_t a = c.simplex[0], b = c.simplex[1], d = c.simplex[2];
       return a != b && b != d && a != d && collinear(at(X, a), at(X, b), at(X, d));
+    }
+    case InfeasibilityKind::ChordTouchesBoundary: {
+      if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || !simplex_locked() || !in_tet(c.tet)) return false;
+      if (c.boundary_face.size() != 3 || edge_on_boundary(mesh, c.simplex[0], c.simplex[1])) return false;
+      const std::array<std::uint32_t, 3> f = {c.boundary_face[0], c.boundary_face[1], c.boundary_face[2]};
+      for (std::uint32_t v : f)
+        if (v >= nv || !locked[v] || v == c.simplex[0] || v == c.simplex[1]) return false;
+      if (!is_boundary_face(mesh, f) || triangle_is_degenerate(at(X, f[0]), at(X, f[1]), at(X, f[2]))) return false;
+      return segment_intersects_triangle(at(X, c.simplex[0]), at(X, c.simplex[1]), at(X, f[0]), at(X, f[1]), at(X, f[2])) &&
+             boundary_image_embedded(mesh, X);
     }
     case InfeasibilityKind::EmptyLinkKernel: {
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||

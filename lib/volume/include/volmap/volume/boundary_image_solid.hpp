@@ -28,7 +28,11 @@ class BoundaryImageSolid {
   // Exact: the closed segment between the images of a and b meets a boundary triangle with neither
   // a nor b as a corner. (Triangles at a or b meet it only at that corner unless the chord lies in
   // their plane, which the facet-plane rule of ChordRules already decides.)
-  bool segment_touches_boundary(std::uint32_t a, std::uint32_t b) const;
+  bool segment_touches_boundary(std::uint32_t a, std::uint32_t b) const { return touched_triangle(a, b) != kNone; }
+  // The same, naming the corners of the first such boundary triangle found (kNone: there is none).
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::uint32_t touched_triangle(std::uint32_t a, std::uint32_t b) const;
+  const std::array<std::uint32_t, 3>& triangle(std::uint32_t f) const { return tris_[f]; }
   // Exact: the closed image triangle (a, b, c) meets a boundary triangle other than in the corners
   // and the edge the two share by id.
   bool triangle_touches_boundary(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;

@@ -10,6 +10,13 @@
 //                          vertices do.
 //   DegenerateFace       — a face with three locked vertices whose images are collinear (exact
 //                          predicate collinear): its tets are flat.
+//   ChordTouchesBoundary — an interior edge (not an edge of ∂M) with both vertices locked whose
+//                          image segment meets the image of a face of ∂M that has neither as a
+//                          corner (exact segment-triangle test), while the boundary image is
+//                          embedded (exact self-intersection test). A map with every tet positive
+//                          is then a bijection onto the solid the boundary image bounds, and it
+//                          sends the edge's relative interior into that solid's interior, which
+//                          the boundary does not meet.
 //   EmptyLinkKernel      — a free vertex v and link faces of v (each the face opposite v in a tet
 //                          of its star, its three vertices locked). Each tet needs
 //                          orient3d(face, x_v) > 0, i.e. n_F·x_v > n_F·a_F with
@@ -30,7 +37,7 @@
 
 namespace volmap {
 
-enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, EmptyLinkKernel };
+enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel };
 
 struct InfeasibilityCertificate {
   InfeasibilityKind kind = InfeasibilityKind::FixedTet;
@@ -39,6 +46,8 @@ struct InfeasibilityCertificate {
   // EmptyLinkKernel: the tets whose link faces form the constraint set and their exact multipliers.
   std::vector<std::uint32_t> constraint_tets;
   std::vector<Rational> multipliers;
+  // ChordTouchesBoundary: the corners of the face of ∂M whose image the chord's image meets.
+  std::vector<std::uint32_t> boundary_face;
 };
 
 const char* infeasibility_kind_name(InfeasibilityKind kind);
