@@ -10,6 +10,10 @@
 
 namespace volmap {
 
+namespace {
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) { return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+}  // namespace
+
 double tet_shape(const double* p0, const double* p1, const double* p2, const double* p3) {
   const double* p[4] = {p0, p1, p2, p3};
   double e[3][3], l2 = 0;
@@ -62,7 +66,13 @@ ChordRules::ChordRules(const TetMesh& mesh, const std::vector<std::uint8_t>& loc
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
   for (std::size_t k = 0; k < tris.size(); ++k)
     for (std::uint32_t v : tris[k]) planes_[fill[v]++] = planes[k];
-  if (!boundary_image_is_convex(mesh, target_)) solid_ = std::make_unique<BoundaryImageSolid>(mesh, target_);
+  if (!boundary_image_is_convex(mesh, target_)) {
+    solid_ = std::make_unique<BoundaryImageSolid>(mesh, target_);
+    for (HalfFaceId h : bfaces) {
+      const auto f = mesh.half_face_vertices(h);
+      for (int i = 0; i < 3; ++i) boundary_edges_.insert(edge_key(f[i].idx(), f[(i + 1) % 3].idx()));
+    }
+  }
 }
 
 bool ChordRules::in_facet_plane_at(std::uint32_t a, const std::uint32_t* others, int n) const {
@@ -83,8 +93,11 @@ bool ChordRules::in_facet_plane_at(std::uint32_t a, const std::uint32_t* others,
 bool ChordRules::edge_blocks(std::uint32_t a, std::uint32_t b) const {
   if (!locked(a) || !locked(b)) return false;
   if (points_equal(image(a), image(b)) || in_facet_plane_at(a, &b, 1) || in_facet_plane_at(b, &a, 1)) return true;
-  if (!solid_) return false;
-  const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+  return solid_ && edge_leaves(a, b);
+}
+
+bool ChordRules::edge_leaves(std::uint32_t a, std::uint32_t b) const {
+  const std::uint64_t key = edge_key(a, b);
   const auto known = edge_leaves_.find(key);
   if (known != edge_leaves_.end()) return known->second;
   const bool leaves = solid_->segment_leaves(a, b);
@@ -97,7 +110,20 @@ bool ChordRules::face_image_blocks(std::uint32_t a, std::uint32_t b, std::uint32
   std::array<std::uint32_t, 3> k = {a, b, c};
   std::sort(k.begin(), k.end());
   if (collinear(image(k[0]), image(k[1]), image(k[2])) || in_facet_plane_at(k[0], &k[1], 2)) return true;
-  return solid_ && solid_->triangle_leaves(k[0], k[1], k[2]);
+  if (!solid_) return false;
+  bool on_boundary = false;  // an edge of the face is an edge of ∂M
+  for (int i = 0; i < 3; ++i) {
+    const std::uint32_t x = k[i], y = k[(i + 1) % 3];
+    if (boundary_edges_.count(edge_key(x, y)))
+      on_boundary = true;
+    else if (edge_leaves(x, y))
+      return true;
+  }
+  if (solid_->triangle_touches_boundary(k[0], k[1], k[2])) return true;
+  if (!on_boundary) return false;  // its boundary lies inside D and the face misses ∂D
+  const double *p = image(k[0]), *q = image(k[1]), *r = image(k[2]);
+  const double centroid[3] = {(p[0] + q[0] + r[0]) / 3, (p[1] + q[1] + r[1]) / 3, (p[2] + q[2] + r[2]) / 3};
+  return !solid_->contains(centroid);
 }
 
 bool ChordRules::fixed_tet_nonpositive(const std::array<std::uint32_t, 4>& v) const {

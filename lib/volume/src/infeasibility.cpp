@@ -163,7 +163,7 @@ class CertificateSearch {
     for (std::uint32_t t = 0; t < mesh_.num_tet_slots() && !full(); ++t) {
       const std::uint32_t* v = &tv[4 * std::size_t(t)];
       if (all_locked(v, 4) && orient3d(at(X_, v[0]), at(X_, v[1]), at(X_, v[2]), at(X_, v[3])) <= 0)
-        keep({InfeasibilityKind::FixedTet, {v[0], v[1], v[2], v[3]}, t, {}, {}});
+        keep({InfeasibilityKind::FixedTet, {v[0], v[1], v[2], v[3]}, t, {}, {}, {}});
     }
   }
 
@@ -173,7 +173,7 @@ class CertificateSearch {
       const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
       if (!all_locked(v, 2)) continue;
       if (points_equal(at(X_, v[0]), at(X_, v[1])))
-        keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}});
+        keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {}});
     }
   }
 
@@ -185,7 +185,7 @@ class CertificateSearch {
       const auto f = mesh_.half_face_vertices(hf);
       const std::uint32_t v[3] = {f[0].idx(), f[1].idx(), f[2].idx()};
       if (all_locked(v, 3) && collinear(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
-        keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}});
+        keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}, {}});
     }
   }
 
@@ -267,7 +267,7 @@ class CertificateSearch {
         for (std::size_t i : s) sub.push_back(ks[order[i]]);
         std::vector<Rational> lambda = one_dimensional_null_vector(sub);
         if (!farkas_certifies_empty(sub, lambda)) return false;
-        InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda};
+        InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda, {}};
         for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
         keep(std::move(c));
         return true;

@@ -22,20 +22,45 @@ namespace volmap {
 
 namespace {
 
+// What §3 and §4 made of the input: the same for every start, so a restart from the other start
+// takes it over instead of analysing and editing the input again (on a 131k-tet coarse limb mesh
+// onto the star that was 14 s of the 60).
+struct PreparedSource {
+  TetMesh mesh;
+  std::vector<std::array<double, 3>> target;
+  std::vector<std::uint8_t> locked;
+  FeasibilityReport feasibility;
+  std::vector<InfeasibilityCertificate> infeasibility;
+  ChordSplitResult chords;
+  bool chords_edited = false;  // the chord-split stage ran
+};
+
 class VolumeMapper {
  public:
-  VolumeMapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options)
+  // prepared: a PreparedSource of the same input and map from an earlier run, or null.
+  VolumeMapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options, const PreparedSource* prepared)
       : options_(options), map_(map), total_(options.time_limit_seconds), attempt_(total_), state_(input, map, options.initial_xyz), judge_(state_),
-        input_has_tet_labels_(!input.tet_labels.empty()), input_has_vertex_labels_(!input.vertex_labels.empty()) {
+        input_has_tet_labels_(!input.tet_labels.empty()), input_has_vertex_labels_(!input.vertex_labels.empty()), prepared_(prepared) {
     b1_rounds_ = options.allow_refinement && options.method == MapMethod::Ffm;
     plan_schedule();
     growth_budget_ = std::size_t(options.max_growth * double(state_.input_tets));
     growth_cap_ = std::max(growth_budget_, std::size_t(options.max_growth_last_resort * double(state_.input_tets)));
   }
 
+  // After run(): what §3–§4 made of the input, when a restart from the other start may follow.
+  std::shared_ptr<PreparedSource> kept_for_restart() const { return kept_for_restart_; }
+
   VolumeMapResult run() {
-    analyze();
-    if (options_.allow_refinement) remove_blocking_chords_stage();
+    if (prepared_) {
+      take_prepared_source();
+    } else {
+      analyze();
+      ChordSplitResult chords;
+      const bool edited = options_.allow_refinement && remove_blocking_chords_stage(chords);
+      if (restart_possible())
+        kept_for_restart_ = std::make_shared<PreparedSource>(PreparedSource{
+            state_.source, state_.target.data(), state_.locked.data(), result_.feasibility, result_.infeasibility, chords, edited});
+    }
     start_map();
     // A boundary image enclosing a non-positive volume (mirrored map): no map exists at any
     // refinement (the target volumes sum to that volume), so no untangler is run.
@@ -70,6 +95,8 @@ class VolumeMapper {
   std::size_t bad_ = 0;  // exact non-positive count of the state kept
   std::size_t early_b1_stalled_at_ = std::size_t(-1);  // bad count of the last early B1 that patched nothing
   bool input_has_tet_labels_, input_has_vertex_labels_;  // label arrays stay empty when the input's were
+  const PreparedSource* prepared_ = nullptr;
+  std::shared_ptr<PreparedSource> kept_for_restart_;
 
   // The schedule over attempt_: planned over min(its limit, the planning horizon); with refinement
   // the cascade gets the first refine_time_share of the plan. MapMethod::Tlc is one stage: it plans
@@ -124,17 +151,39 @@ class VolumeMapper {
     });
   }
 
-  void remove_blocking_chords_stage() {
+  // B0 when something blocks; false when nothing needed it.
+  bool remove_blocking_chords_stage(ChordSplitResult& cs) {
     const FeasibilityReport& f = result_.feasibility;
-    if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty() && f.fixed_nonpositive_tets.empty()) return;
-    ChordSplitResult cs;
+    if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty() && f.fixed_nonpositive_tets.empty()) return false;
     timed_stage("chord-split", [&] { cs = remove_blocking_chords(state_, f); });
+    record_chords(cs, true);
+    return true;
+  }
+
+  void record_chords(const ChordSplitResult& cs, bool edited) {
+    if (!edited) return;
     result_.chord_edges_split = cs.edges_split;
     result_.chord_faces_split = cs.faces_split;
     result_.chord_edges_removed = cs.edges_removed;
     result_.chord_faces_flipped = cs.faces_flipped;
     result_.chord_cone_patches = cs.cone_patches;
     result_.refined = cs.vertices_added > 0 || cs.edges_removed > 0 || cs.faces_flipped > 0;
+  }
+
+  bool restart_possible() const {
+    return cascade() && options_.start == StartMap::Fewest && options_.restart_share < 1 && total_.limited();
+  }
+
+  // The restart's state after §3–§4, as the first run left it (a stage of no time in the list).
+  void take_prepared_source() {
+    const PreparedSource& p = *prepared_;
+    state_.source = p.mesh;  // resets the properties...
+    state_.target.data() = p.target;  // ...restored here
+    state_.locked.data() = p.locked;
+    result_.feasibility = p.feasibility;
+    result_.infeasibility = p.infeasibility;
+    record_chords(p.chords, p.chords_edited);
+    result_.stages.push_back({"feasibility-and-chord-split-reused", 0, 0, state_.source.num_tets(), ""});
   }
 
   // The given initial map (chord-split vertices placed by a local Laplacian), or the start of
@@ -402,10 +451,15 @@ class VolumeMapper {
   }
 };
 
-VolumeMapResult run_mapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
-  VolumeMapper mapper(input, map, options);  // validates the input (Error(BadInput))
+// prepared: what an earlier run of the same input made of it before its start map (or null);
+// kept (when not null): receives this run's, when a restart could use it.
+VolumeMapResult run_mapper(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options,
+                           const PreparedSource* prepared = nullptr, std::shared_ptr<PreparedSource>* kept = nullptr) {
+  VolumeMapper mapper(input, map, options, prepared);  // validates the input (Error(BadInput))
   try {
-    return mapper.run();
+    VolumeMapResult r = mapper.run();
+    if (kept) *kept = mapper.kept_for_restart();
+    return r;
   } catch (const Error& e) {  // the input was valid: whatever fails now is the mapper's own failure
     if (e.kind() != ErrorKind::BadInput) throw;
     throw Error(ErrorKind::Failed, "", 0, "internal: " + e.reason());
@@ -445,14 +499,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
     throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
   const TimeBudget total(options.time_limit_seconds);
-  VolumeMapResult first = run_mapper(input, map, options);  // validates the input (Error(BadInput))
+  std::shared_ptr<PreparedSource> prepared;
+  VolumeMapResult first = run_mapper(input, map, options, nullptr, &prepared);  // validates the input (Error(BadInput))
   if (!worth_a_restart(first, options)) return first;
   VolumeMapOptions again = options;
   again.start = *first.other_start;
   again.restart_share = 1;
   if (total.limited()) again.time_limit_seconds = total.remaining();
   try {
-    VolumeMapResult second = run_mapper(input, map, again);
+    VolumeMapResult second = run_mapper(input, map, again, prepared.get());
     return better_of_two_starts(std::move(first), std::move(second), total.elapsed());
   } catch (const Error& e) {  // the restart failed internally: the first run's result stands
     first.stages.push_back({"restart", 0, first.nonpositive, first.input_tets, e.reason()});

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace volmap {
@@ -51,6 +52,45 @@ struct BoxTree {
       }
       for (std::uint32_t i = node.begin; i < node.end; ++i)
         if (boxes_overlap(leaf_boxes[i], query)) visit(order[i]);
+    }
+  }
+
+  // Calls visit(item) for every item whose box, grown by `pad` on every side, meets the segment pq
+  // (slab test in double: the padding absorbs its rounding, so an item whose box the segment
+  // touches is never skipped when pad exceeds a few ulps of the coordinates).
+  template <class Visit>
+  void for_each_near_segment(const double* p, const double* q, double pad, Visit&& visit) const {
+    if (nodes.empty()) return;
+    const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    auto meets = [&](const Box3& b) {
+      double t0 = 0, t1 = 1;
+      for (int k = 0; k < 3; ++k) {
+        const double lo = b.lo[k] - pad, hi = b.hi[k] + pad;
+        if (d[k] == 0) {
+          if (p[k] < lo || p[k] > hi) return false;
+          continue;
+        }
+        double a = (lo - p[k]) / d[k], c = (hi - p[k]) / d[k];
+        if (a > c) std::swap(a, c);
+        t0 = a > t0 ? a : t0;
+        t1 = c < t1 ? c : t1;
+        if (t0 > t1) return false;
+      }
+      return true;
+    };
+    std::uint32_t stack[96];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes[stack[--top]];
+      if (!meets(node.box)) continue;
+      if (node.left != 0) {
+        stack[top++] = node.left;
+        stack[top++] = node.left + 1;
+        continue;
+      }
+      for (std::uint32_t i = node.begin; i < node.end; ++i)
+        if (meets(leaf_boxes[i])) visit(order[i]);
     }
   }
 };

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace volmap {
@@ -46,7 +47,10 @@ class ChordRules {
   bool edge_blocks(std::uint32_t a, std::uint32_t b) const;
   // An interior face (a, b, c) with all three locked blocks (whatever its apexes) when its image is
   // degenerate (exactly collinear) or lies in the plane of a boundary triangle at its smallest id;
-  // or, on a non-convex image, when its image leaves D (BoundaryImageSolid::triangle_leaves).
+  // or, on a non-convex image, when its image leaves D: one of its edges that is not an edge of ∂M
+  // leaves D (BoundaryImageSolid::segment_leaves), it touches ∂D away from the corners and edges it
+  // shares with ∂M, or (with an edge of ∂M) its centroid is not inside. A face whose edges lie in
+  // D's interior and that misses ∂D lies in D's interior, so only then is no point tested.
   bool face_image_blocks(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // A tet whose four vertices are locked has a fixed image: true when that image is not strictly
   // positive. (An interior face whose two tets are both fixed blocks exactly when one of them is.)
@@ -63,7 +67,11 @@ class ChordRules {
   // normal and the normal's length; triangles degenerate in double are left out (no plane).
   std::vector<std::uint32_t> offsets_;
   std::vector<std::array<double, 7>> planes_;
+  // Does the chord (a, b) leave D? (remembered per edge)
+  bool edge_leaves(std::uint32_t a, std::uint32_t b) const;
+
   std::unique_ptr<BoundaryImageSolid> solid_;  // only for a non-convex image
+  std::unordered_set<std::uint64_t> boundary_edges_;  // edges of ∂M (with solid_ only)
   mutable std::unordered_map<std::uint64_t, bool> edge_leaves_;
 };
 
