@@ -9,6 +9,7 @@
 #include <volmap/check/map_check.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/core/time_budget.hpp>
+#include <volmap/volume/bad_tet_split.hpp>
 #include <volmap/volume/map_stages.hpp>
 
 #include <tbb/global_control.h>
@@ -96,6 +97,7 @@ class VolumeMapper {
   std::size_t early_b1_stalled_at_ = std::size_t(-1);  // bad count of the last early B1 that patched nothing
   bool input_has_tet_labels_, input_has_vertex_labels_;  // label arrays stay empty when the input's were
   const PreparedSource* prepared_ = nullptr;
+  std::size_t split_rounds_ = 0;  // split_bad_tets stages run
   std::shared_ptr<PreparedSource> kept_for_restart_;
 
   // The schedule over attempt_: planned over min(its limit, the planning horizon); with refinement
@@ -276,6 +278,31 @@ class VolumeMapper {
     return cr;
   }
 
+  // Where a repair round moved nothing and few tets are left: their interior edges are split and
+  // link kernel, kernel descent and local FFM run on the finer mesh, judged as one stage (undone
+  // when the count ends higher). Measured on coarse thin shapes whose last 1-4 tets no cone patch
+  // could reach (target needles: no kernel point), one round certified fins -> pyr, fins -> tet and
+  // coarse limbs -> tet. At most kSplitRounds times per run, within the growth cap.
+  bool split_bad_tets() {
+    static constexpr std::size_t kSplitMaxBad = 64, kSplitRounds = 6, kTetsPerBadTet = 40;
+    if (bad_ == 0 || bad_ > kSplitMaxBad || split_rounds_ >= kSplitRounds || !cascade() || budget_->expired()) return false;
+    const long long used = (long long)state_.source.num_tets() - (long long)state_.input_tets;
+    if (used + (long long)(kTetsPerBadTet * bad_) > (long long)growth_cap_) return false;
+    ++split_rounds_;
+    const std::size_t before = bad_;
+    LocalUntangleOptions lo;
+    lo.time_limit_seconds = budget_->option_seconds(0.3);
+    judged_stage("split-bad-tets", [&] {
+      split_edges_of_nonpositive_tets(state_);
+      run_link_kernel(state_, 50);
+      if (options_.kernel_descent) run_kernel_descent(state_);
+      if (options_.local_untangle) run_local_ffm(state_, lo);
+    });
+    if (bad_ >= before) return false;
+    result_.refined = true;
+    return true;
+  }
+
   // After a B1 round that refused a patch for the budget while bad tets remain (see
   // max_growth_last_resort): a larger budget; false when it is at the cap already.
   bool escalate_growth_budget(const ConeRepairResult& cr) {
@@ -384,6 +411,7 @@ class VolumeMapper {
       local_ffm(0.3);
       if (bad_ == 0 || budget_->expired()) break;
       if (!(cr.patches == 0 && bad_ >= bad_before && bad_ >= bad_local)) continue;
+      if (split_bad_tets()) continue;  // finer where it is tangled: the next round starts from there
       if (global_tried) break;  // nothing moves any more
       if (!tlc_retried) {
         tlc_retried = true;
