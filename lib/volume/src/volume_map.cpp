@@ -407,6 +407,8 @@ class VolumeMapper {
       }
       link_kernel();
       if (bad_ == 0 || budget_->expired()) break;
+      // A repair that patched nothing: the split (with its own short local FFM) before a long local FFM.
+      if (cr.patches == 0 && bad_ >= bad_before && split_bad_tets()) continue;
       const std::size_t bad_local = bad_;
       local_ffm(0.3);
       if (bad_ == 0 || budget_->expired()) break;
