@@ -197,7 +197,7 @@ class CertificateSearch {
     for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
       const auto ends = mesh_.edge_vertices(EdgeId(e));
       const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
-      if (!all_locked(v, 2) || edge_on_boundary(mesh_, v[0], v[1])) continue;
+      if (!all_locked(v, 2) || !mesh_.edge_star(EdgeId(e), [](TetId) {})) continue;  // an edge of ∂M
       const std::uint32_t f = solid.touched_triangle(v[0], v[1]);
       if (f == BoundaryImageSolid::kNone) continue;
       const auto& t = solid.triangle(f);
