@@ -41,6 +41,21 @@ MappedShape coarse_thin_surface_map(const fs::path& d, const std::string& shape,
               .code == 0);
   return {fs::exists(in) ? in : mesh, map};
 }
+
+struct MapRun {
+  int code;          // volmap-map's exit code
+  nlohmann::json j;  // its --json object
+  int check;         // volmap-map-check's exit code on what it wrote (1 when nothing was written)
+};
+
+// volmap-map on the shape (refinement allowed, one thread), then volmap-map-check on its outputs.
+MapRun map_shape(const fs::path& d, const MappedShape& shape, const std::string& tag, double time_limit, const std::string& options) {
+  const std::string out = (d / (tag + "_out.mesh")).string(), refined = (d / (tag + "_refined.mesh")).string();
+  const auto r = run(tool("volmap-map") + " " + quote(shape.source) + " " + quote(shape.map) + " " + quote(out) + " --refined-input " +
+                     quote(refined) + " --threads 1 --time-limit " + std::to_string(time_limit) + " --json " + options);
+  const int check = fs::exists(out) ? run(tool("volmap-map-check") + " " + quote(refined) + " " + quote(out) + " > /dev/null").code : 1;
+  return {r.code, nlohmann::json::parse(r.out), check};
+}
 }  // namespace
 
 TEST_CASE("coarse thin calibration cube onto the star: chords over the valleys leave in B0 and the map certifies from either start") {
@@ -49,22 +64,13 @@ TEST_CASE("coarse thin calibration cube onto the star: chords over the valleys l
     return;
   }
   const fs::path d = volmap_test::scratch_dir("thin_pipeline");
-  const auto [source, map] = coarse_thin_surface_map(d, "calibration_cube_thin", "star");
-
-  auto map_case = [&](const std::string& tag, double time_limit, const std::string& options) {
-    const std::string out = (d / (tag + "_out.mesh")).string(), refined = (d / (tag + "_refined.mesh")).string();
-    const auto r = run(tool("volmap-map") + " " + quote(source) + " " + quote(map) + " " + quote(out) + " --refined-input " +
-                       quote(refined) + " --threads 1 --time-limit " + std::to_string(time_limit) + " --json " + options);
-    const auto j = nlohmann::json::parse(r.out);
-    const int check = fs::exists(out) ? run(tool("volmap-map-check") + " " + quote(refined) + " " + quote(out) + " > /dev/null").code : 1;
-    return std::make_tuple(r.code, j, check);
-  };
+  const MappedShape shape = coarse_thin_surface_map(d, "calibration_cube_thin", "star");
 
   // Before chords leaving the non-convex star blocked (boundary_image_solid.hpp), the radial start
   // stalled here at one or two inverted tets next to a thin wall and only the restart from Tutte 3D
   // certified. Now B0 removes them and each start certifies on its own; the independent check agrees.
   for (const char* start : {"radial", "tutte"}) {
-    const auto [code, j, check] = map_case(std::string("start_") + start, 20, std::string("--start ") + start);
+    const auto [code, j, check] = map_shape(d, shape, std::string("start_") + start, 20, std::string("--start ") + start);
     INFO(start);
     CHECK(code == 0);
     CHECK(j["certified"] == true);
@@ -79,13 +85,9 @@ TEST_CASE("coarse limbs onto the star: a stalled first run restarts from the oth
     return;
   }
   const fs::path d = volmap_test::scratch_dir("thin_pipeline_restart");
-  const auto [source, map] = coarse_thin_surface_map(d, "limbs_coarse", "star");
-  const std::string out = (d / "out.mesh").string(), refined = (d / "refined.mesh").string();
   // 6 s: the first start gets 3 s and is not certified (this case leaves a few inverted tets even
   // after 60 s), so the other start gets the rest. Both starts exist: the star's image is not convex.
-  const auto r = run(tool("volmap-map") + " " + quote(source) + " " + quote(map) + " " + quote(out) + " --refined-input " + quote(refined) +
-                     " --threads 1 --time-limit 6 --json");
-  const auto j = nlohmann::json::parse(r.out);
+  const auto [code, j, check] = map_shape(d, coarse_thin_surface_map(d, "limbs_coarse", "star"), "restart", 6, "");
   CHECK(j["restarted"] == true);
   const auto& stages = j["stages"];
   std::size_t restart = stages.size(), first_b0 = stages.size();
@@ -103,9 +105,8 @@ TEST_CASE("coarse limbs onto the star: a stalled first run restarts from the oth
     CHECK(stages[k]["name"] != "chord-split");
   }
   // Whatever the verdict, the independent check agrees with it.
-  const int check = run(tool("volmap-map-check") + " " + quote(refined) + " " + quote(out) + " > /dev/null").code;
-  CHECK((r.code == 0) == (check == 0));
-  CHECK((j["certified"] == true) == (r.code == 0));
+  CHECK((code == 0) == (check == 0));
+  CHECK((j["certified"] == true) == (code == 0));
 }
 
 namespace {

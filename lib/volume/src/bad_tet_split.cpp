@@ -24,18 +24,12 @@ double squared_distance(const std::array<double, 3>& p, const std::array<double,
 // The interior edges of the non-positive tets, longest target edge first.
 std::vector<std::array<std::uint32_t, 2>> edges_to_split(const MapState& state, std::size_t& bad_tets) {
   const TetMesh& mesh = state.source;
+  const std::vector<std::uint32_t> bad = nonpositive_tets(state.target_xyz(), mesh.tet_vertex_array());
+  bad_tets = bad.size();
   std::set<std::array<std::uint32_t, 2>> seen;
   std::vector<std::pair<double, std::array<std::uint32_t, 2>>> edges;
-  const FpEnvironmentScope fp;
-  for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-    if (!mesh.tet_is_live(TetId(t))) continue;
+  for (std::uint32_t t : bad) {
     const auto v = mesh.tet_vertices(TetId(t));
-    const auto& x0 = state.target[v[0]];
-    const auto& x1 = state.target[v[1]];
-    const auto& x2 = state.target[v[2]];
-    const auto& x3 = state.target[v[3]];
-    if (fp.orient3d(x0.data(), x1.data(), x2.data(), x3.data()) > 0) continue;
-    ++bad_tets;
     for (const auto& e : kTetEdge) {
       std::array<std::uint32_t, 2> key = {v[e[0]].idx(), v[e[1]].idx()};
       if (key[0] > key[1]) std::swap(key[0], key[1]);

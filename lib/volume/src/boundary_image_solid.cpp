@@ -44,9 +44,9 @@ BoundaryImageSolid::BoundaryImageSolid(const TetMesh& mesh, const std::vector<do
   std::vector<Box3> boxes;
   for (HalfFaceId h : mesh.boundary_half_faces()) {
     const auto f = mesh.half_face_vertices(h);
-    if (collinear(image(f[0].idx()), image(f[1].idx()), image(f[2].idx()))) continue;  // no plane (an invalid surface map)
-    tris_.push_back({f[0].idx(), f[1].idx(), f[2].idx()});
     const double *a = image(f[0].idx()), *b = image(f[1].idx()), *c = image(f[2].idx());
+    if (collinear(a, b, c)) continue;  // no plane (an invalid surface map)
+    tris_.push_back({f[0].idx(), f[1].idx(), f[2].idx()});
     boxes.push_back(box_of({a, b, c}));
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};

@@ -158,12 +158,11 @@ class VolumeMapper {
     const FeasibilityReport& f = result_.feasibility;
     if (f.blocking_chord_edges.empty() && f.blocking_chord_faces.empty() && f.fixed_nonpositive_tets.empty()) return false;
     timed_stage("chord-split", [&] { cs = remove_blocking_chords(state_, f); });
-    record_chords(cs, true);
+    record_chords(cs);
     return true;
   }
 
-  void record_chords(const ChordSplitResult& cs, bool edited) {
-    if (!edited) return;
+  void record_chords(const ChordSplitResult& cs) {
     result_.chord_edges_split = cs.edges_split;
     result_.chord_faces_split = cs.faces_split;
     result_.chord_edges_removed = cs.edges_removed;
@@ -184,7 +183,7 @@ class VolumeMapper {
     state_.locked.data() = p.locked;
     result_.feasibility = p.feasibility;
     result_.infeasibility = p.infeasibility;
-    record_chords(p.chords, p.chords_edited);
+    if (p.chords_edited) record_chords(p.chords);
     result_.stages.push_back({"feasibility-and-chord-split-reused", 0, 0, state_.source.num_tets(), ""});
   }
 
