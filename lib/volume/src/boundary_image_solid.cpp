@@ -38,6 +38,13 @@ constexpr double kRays[6][3] = {{1, 1.37e-3, 2.71e-3},   {-1, 3.14e-3, -1.41e-3}
 
 }  // namespace
 
+bool boundary_image_is_embedded(const TetMesh& mesh, const std::vector<double>& target_xyz) {
+  std::vector<std::uint32_t> tris;
+  for (HalfFaceId h : mesh.boundary_half_faces())
+    for (VertexId v : mesh.half_face_vertices(h)) tris.push_back(v.idx());
+  return find_self_intersections(target_xyz.data(), target_xyz.size() / 3, tris.data(), tris.size() / 3).clean();
+}
+
 BoundaryImageSolid::BoundaryImageSolid(const TetMesh& mesh, const std::vector<double>& target_xyz) : target_(target_xyz) {
   if (target_xyz.size() != 3 * std::size_t(mesh.num_vertex_slots()))
     throw Error(ErrorKind::BadInput, "", 0, "boundary image solid: inconsistent array sizes");

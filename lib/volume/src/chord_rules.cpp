@@ -66,7 +66,7 @@ ChordRules::ChordRules(const TetMesh& mesh, const std::vector<std::uint8_t>& loc
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
   for (std::size_t k = 0; k < tris.size(); ++k)
     for (std::uint32_t v : tris[k]) planes_[fill[v]++] = planes[k];
-  if (!boundary_image_is_convex(mesh, target_)) {
+  if (!boundary_image_is_convex(mesh, target_) && boundary_image_is_embedded(mesh, target_)) {
     solid_ = std::make_unique<BoundaryImageSolid>(mesh, target_);
     for (HalfFaceId h : bfaces) {
       const auto f = mesh.half_face_vertices(h);

@@ -118,14 +118,6 @@ bool is_boundary_face(const TetMesh& mesh, std::array<std::uint32_t, 3> abc) {
   return false;
 }
 
-// The images of ∂M's faces form an embedded surface (exact).
-bool boundary_image_embedded(const TetMesh& mesh, const std::vector<double>& X) {
-  std::vector<std::uint32_t> tris;
-  for (HalfFaceId h : mesh.boundary_half_faces())
-    for (VertexId v : mesh.half_face_vertices(h)) tris.push_back(v.idx());
-  return find_self_intersections(X.data(), X.size() / 3, tris.data(), tris.size() / 3).clean();
-}
-
 class CertificateSearch {
  public:
   CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
@@ -192,7 +184,7 @@ class CertificateSearch {
   // Only on a clearly non-convex image: on a convex one a chord meets ∂D only inside a facet, which
   // DegenerateFace, FixedTet or the untanglers' own count already expose.
   void chords_touching_boundary() {
-    if (full() || boundary_image_is_convex(mesh_, X_)) return;
+    if (full() || boundary_image_is_convex(mesh_, X_) || !boundary_image_is_embedded(mesh_, X_)) return;
     const BoundaryImageSolid solid(mesh_, X_);
     for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
       const auto ends = mesh_.edge_vertices(EdgeId(e));
@@ -363,7 +355,7 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
         if (v >= nv || !locked[v] || v == c.simplex[0] || v == c.simplex[1]) return false;
       if (!is_boundary_face(mesh, f) || triangle_is_degenerate(at(X, f[0]), at(X, f[1]), at(X, f[2]))) return false;
       return segment_intersects_triangle(at(X, c.simplex[0]), at(X, c.simplex[1]), at(X, f[0]), at(X, f[1]), at(X, f[2])) &&
-             boundary_image_embedded(mesh, X);
+             boundary_image_is_embedded(mesh, X);
     }
     case InfeasibilityKind::EmptyLinkKernel: {
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||

@@ -26,6 +26,11 @@
 
 namespace volmap {
 
+// The images of ∂M's faces form an embedded surface (exact self-intersection test). Everything in
+// this file presumes it: a self-overlapping image (LIM's deformation benchmarks, locally injective
+// maps) bounds no solid, and its chords may cross it in a valid locally injective map.
+bool boundary_image_is_embedded(const TetMesh& mesh, const std::vector<double>& target_xyz);
+
 class BoundaryImageSolid {
  public:
   BoundaryImageSolid(const TetMesh& mesh, const std::vector<double>& target_xyz);

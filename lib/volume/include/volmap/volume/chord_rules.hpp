@@ -2,8 +2,9 @@
 // every map at fixed connectivity (docs/mapping.md §3)? The rules, for one source mesh and its
 // prescribed boundary images, usable on the mesh as it is edited by B0 (§4): ∂M never changes, so
 // the boundary triangles at each boundary vertex are captured once; vertices added later are free.
-// On a non-convex boundary image (boundary_image_is_convex false) a chord also blocks when its
-// straight image leaves the solid the image bounds (boundary_image_solid.hpp).
+// On a non-convex, embedded boundary image (boundary_image_is_convex false,
+// boundary_image_is_embedded true) a chord also blocks when its straight image leaves the solid the
+// image bounds (boundary_image_solid.hpp). A self-overlapping image bounds no solid: the rule is off.
 // Conventions: boundary triangles outward (a point p is inside the domain next to the outward
 // triangle (a,b,c) iff orient3d(a,b,c,p) > 0); signs are exact (volmap predicates); only "lies in the
 // plane of a boundary triangle" uses a tolerance (1e-6 × the largest extent of the boundary image),
