@@ -72,7 +72,7 @@ class VolumeMapper {
     // An exact local certificate at fixed connectivity (§10): no untangler can succeed.
     if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
-    if (bad_ > 0 && options_.method == MapMethod::Ffm && !few_left_for_b1()) global_ffm();
+    if (bad_ > 0 && cascade() && !b1_rounds_) global_ffm();
     if (bad_ > 0 && b1_rounds_) repair_rounds(plan_);
     if (bad_ > 0) use_time_beyond_plan();
     if (bad_ == 0 && options_.quality_pass && options_.method == MapMethod::Ffm && !budget_->expired()) quality();
@@ -143,7 +143,6 @@ class VolumeMapper {
     result_.stages.push_back({name, total_.elapsed() - t0, 0, state_.source.num_tets(), ""});
   }
   bool cascade() const { return options_.method == MapMethod::Ffm; }
-  bool few_left_for_b1() const { return b1_rounds_ && bad_ <= options_.early_repair_max_bad; }
 
   // ---- §3, §4, §2: before untangling ----------------------------------------------------------
   void analyze() {
@@ -241,6 +240,11 @@ class VolumeMapper {
     kernel_descent();
   }
 
+  // The local FFM's share in the cascade: smaller when B1 follows (cone patches and splits finish
+  // most maps it leaves; measured below split_bad_tets), larger at fixed connectivity, where it is
+  // one of the few moves left.
+  double cascade_local_share() const { return b1_rounds_ ? 0.1 : 0.25; }
+
   // TLC with a 100× smaller lift (alpha 1e-8) from the current map, then link-kernel relocation.
   void small_lift_tlc(const std::string& name, double share) {
     TlcOptions to;
@@ -277,11 +281,14 @@ class VolumeMapper {
     return cr;
   }
 
-  // Where a repair round moved nothing and few tets are left: their interior edges are split and
-  // link kernel, kernel descent and local FFM run on the finer mesh, judged as one stage (undone
-  // when the count ends higher). Measured on coarse thin shapes whose last 1-4 tets no cone patch
-  // could reach (target needles: no kernel point), one round certified fins -> pyr, fins -> tet and
-  // coarse limbs -> tet. At most kSplitRounds times per run, within the growth cap.
+  // Where a repair round left few tets: their interior edges are split and link kernel, kernel
+  // descent and local FFM run on the finer mesh, judged as one stage (undone when the count ends
+  // higher). Measured on coarse thin shapes whose last 1-4 tets no cone patch could reach (target
+  // needles: no kernel point), one round certified fins -> pyr, fins -> tet and coarse limbs -> tet.
+  // Over the thin_coarse, surfaces and tetmeshes sets (results6) the local FFM alone lowered the
+  // count in 14 of 480 calls (690 s without progress); the split lowered it in 14 of 78 and then
+  // mostly finished the map within a second. At most kSplitRounds times per run, within the growth
+  // cap.
   bool split_bad_tets() {
     static constexpr std::size_t kSplitMaxBad = 64, kSplitRounds = 6, kTetsPerBadTet = 40;
     if (bad_ == 0 || bad_ > kSplitMaxBad || split_rounds_ >= kSplitRounds || !cascade() || budget_->expired()) return false;
@@ -290,7 +297,7 @@ class VolumeMapper {
     ++split_rounds_;
     const std::size_t before = bad_;
     LocalUntangleOptions lo;
-    lo.time_limit_seconds = budget_->option_seconds(0.3);
+    lo.time_limit_seconds = budget_->option_seconds(0.15);
     judged_stage("split-bad-tets", [&] {
       split_edges_of_nonpositive_tets(state_);
       run_link_kernel(state_, 50);
@@ -356,22 +363,23 @@ class VolumeMapper {
       small_lift_tlc("tlc-small-alpha", 0.3);
       try_early_b1("tlc-small-alpha");
     }
-    local_ffm(0.25);
+    local_ffm(cascade_local_share());
     try_early_b1("ffm-local");
     try_b1_after_stall();
   }
 
-  // When TLC and the local moves leave more non-positive tets than an early B1 attempt takes, the
-  // global FFM stages that would follow rarely lower the count on refinable meshes (measured:
-  // thin_coarse dumbbell -> pyr 263 bad tets through 15 s of FFM stages, then B1 repaired 260 in
-  // 6 s). One B1 attempt with a quarter of the time left comes first; what it repairs is kept.
+  // When TLC and the local moves leave more non-positive tets than an early B1 attempt takes: one B1
+  // attempt with a quarter of the time left before the B1 rounds (no global FFM stage runs with
+  // refinement, see global_ffm); what it repairs is kept.
   void try_b1_after_stall() {
     if (bad_ == 0 || !b1_rounds_ || bad_ <= options_.early_repair_max_bad || budget_->expired()) return;
     cone_repair_stage("cone-repair-after-stall", false, 0.25);
   }
 
   // §5 global FFM with the regular reference, then the rest shape, each followed by the link kernel,
-  // an early B1 attempt and local FFM.
+  // an early B1 attempt and local FFM. Only at fixed connectivity: where B1 may run, no global FFM
+  // stage lowered the count in 86 calls over the thin_coarse, surfaces and tetmeshes sets (results6;
+  // each was undone), and its time goes to the repair rounds instead.
   void global_ffm() {
     std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
     if (options_.ffm_rest_shape_first) std::swap(refs[0], refs[1]);
@@ -385,7 +393,7 @@ class VolumeMapper {
       const std::string name = ref == ReferenceShape::RegularTet ? "ffm-regular" : "ffm-rest";
       global_ffm_stage(name, fo);
       try_early_b1(name);
-      local_ffm(0.25);
+      local_ffm(cascade_local_share());
       try_early_b1("ffm-local");
     }
   }
@@ -393,10 +401,11 @@ class VolumeMapper {
   // §7 B1 rounds over the whole time limit: repair → link kernel → local FFM on the repaired mesh
   // (the rest of the map is valid and stays frozen) → repair again. When the repair and the local
   // solve both stall: one small-lift TLC over the whole mesh (its moves at an equal count change the
-  // state the repair sees), then one global FFM; then stop.
+  // state the repair sees), after which the repair widens its search; at the next stall, stop (the
+  // time left goes to the restart from the other start, when there is one).
   void repair_rounds(const TimeBudget& budget) {
     budget_ = &budget;
-    bool global_tried = false, tlc_retried = false;
+    bool tlc_retried = false;
     for (int round = 0; round < 8 && bad_ > 0 && !budget_->expired(); ++round) {
       const std::size_t bad_before = bad_;
       const ConeRepairResult cr = cone_repair_stage("cone-repair", tlc_retried);
@@ -406,25 +415,19 @@ class VolumeMapper {
       }
       link_kernel();
       if (bad_ == 0 || budget_->expired()) break;
-      // A repair that patched nothing: the split (with its own short local FFM) before a long local FFM.
-      if (cr.patches == 0 && bad_ >= bad_before && split_bad_tets()) continue;
+      // Few tets left: the split (with its own short local FFM) before the long local FFM at fixed
+      // connectivity, which rarely finishes where a repair left tets (measured below split_bad_tets).
+      const std::size_t splits_before = split_rounds_;
+      if (split_bad_tets()) continue;
+      const bool split_tried = split_rounds_ > splits_before;
       const std::size_t bad_local = bad_;
-      local_ffm(0.3);
+      local_ffm(0.15);
       if (bad_ == 0 || budget_->expired()) break;
       if (!(cr.patches == 0 && bad_ >= bad_before && bad_ >= bad_local)) continue;
-      if (split_bad_tets()) continue;  // finer where it is tangled: the next round starts from there
-      if (global_tried) break;  // nothing moves any more
-      if (!tlc_retried) {
-        tlc_retried = true;
-        small_lift_tlc("tlc-after-repair", 0.25);
-        continue;
-      }
-      global_tried = true;
-      FfmOptions fo;
-      fo.reference = ReferenceShape::RestShape;
-      fo.stall_outer_iterations = 40;
-      fo.time_limit_seconds = budget_->option_seconds(0.5);
-      global_ffm_stage("ffm-after-repair", fo);
+      if (!split_tried && split_bad_tets()) continue;  // finer where it is tangled: the next round starts from there
+      if (tlc_retried) break;  // nothing moves any more
+      tlc_retried = true;
+      small_lift_tlc("tlc-after-repair", 0.25);
     }
   }
 
