@@ -31,6 +31,10 @@ struct ConeRepairOptions {
   // Growth candidates (tets behind the most violated faces) tried per step; <= 1: the worst only.
   // After a failure, plain growth and a 2-candidate lookahead are tried too.
   int growth_lookahead = 4;
+  // Bulk growth: each LP growth step also adds the tets behind the |R| / bulk_growth_divisor most
+  // violated faces (0 = one tet per step), so the steps to reach a region of n tets grow like
+  // log n instead of n when the kernel lies far out.
+  std::size_t bulk_growth_divisor = 0;
   int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
   int max_rounds = 8;                 // recompute clusters and retry
   // Wall-clock limit of the whole call (0 = none), checked before each cluster and at each growth
@@ -79,7 +83,8 @@ struct ConeRepairResult {
 };
 
 // Multiplies the growth limits of `options` (stall, growth steps, region size) by search_widening,
-// `times` times: the search of a widened round (docs/mapping.md §7 "Widening the search").
+// `times` times: the search of a widened round (docs/mapping.md §7 "Widening the search"). A widened
+// search also grows in bulk (bulk_growth_divisor 64 unless set).
 void widen_growth_limits(ConeRepairOptions& options, int times = 1);
 
 // Repairs the clusters of non-positive target tets in place: the mesh is refined, new vertices get
