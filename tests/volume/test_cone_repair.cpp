@@ -93,6 +93,28 @@ struct GridCase {
   std::vector<double> target;
 };
 
+// A 12×3×3 Kuhn bar (boundary: its box faces) for scramble_bar.
+GridCase scrambled_bar_case() {
+  volmap::TetMeshData bar = volmap::generate_kuhn_grid(12, 3, 3);
+  std::vector<std::uint8_t> boundary(bar.num_vertices(), 0);
+  for (std::size_t v = 0; v < bar.num_vertices(); ++v) {
+    const double* p = &bar.xyz[3 * v];
+    boundary[v] = p[0] == 0 || p[0] == 12 || p[1] == 0 || p[1] == 3 || p[2] == 0 || p[2] == 3;
+  }
+  return GridCase(std::move(bar), std::move(boundary));
+}
+
+// The bar's target: the identity with every interior vertex moved at random (seeded), three times
+// as far along the bar as across it.
+void scramble_bar(GridCase& c, unsigned seed) {
+  c.target0 = c.m0.xyz;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  for (std::size_t v = 0; v < c.m0.num_vertices(); ++v)
+    if (!c.bnd0[v])
+      for (int d = 0; d < 3; ++d) c.target0[3 * v + d] += u(rng) * (d == 0 ? 3 : 1);
+}
+
 }  // namespace
 
 TEST_CASE("cone repair: one inverted vertex star in a Kuhn grid is repaired with original vertices kept") {
@@ -249,20 +271,9 @@ TEST_CASE("cone repair: along a scrambled bar the growth takes shelling steps, e
   // A 12×3×3 bar whose interior vertices are scrambled, most along the bar: regions grow along it
   // one tet at a time, the case the shelling steps are for. GridCase::repair sets verify_shelling,
   // so a step that left a non-ball would throw.
-  volmap::TetMeshData bar = volmap::generate_kuhn_grid(12, 3, 3);
-  std::vector<std::uint8_t> boundary(bar.num_vertices(), 0);
-  for (std::size_t v = 0; v < bar.num_vertices(); ++v) {
-    const double* p = &bar.xyz[3 * v];
-    boundary[v] = p[0] == 0 || p[0] == 12 || p[1] == 0 || p[1] == 3 || p[2] == 0 || p[2] == 3;
-  }
-  GridCase c(std::move(bar), std::move(boundary));
+  GridCase c = scrambled_bar_case();
   for (unsigned seed : {0u, 3u, 5u}) {
-    c.target0 = c.m0.xyz;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(-0.6, 0.6);
-    for (std::size_t v = 0; v < c.m0.num_vertices(); ++v)
-      if (!c.bnd0[v])
-        for (int d = 0; d < 3; ++d) c.target0[3 * v + d] += u(rng) * (d == 0 ? 3 : 1);
+    scramble_bar(c, seed);
     REQUIRE(volmap::count_nonpositive(c.target0, c.m0.tets) > 0);
     const auto r = c.repair();
     INFO("seed " << seed);
@@ -275,21 +286,10 @@ TEST_CASE("cone repair: along a scrambled bar the growth takes shelling steps, e
 TEST_CASE("cone repair: bulk growth repairs the scrambled bar in fewer growth steps, and a widened search grows in bulk") {
   // The bar of the shelling test: one tet per step against |R| / 8 more per step. Both must give a
   // valid refinement with no cluster left; bulk steps reach the same kernels in fewer LP steps.
-  volmap::TetMeshData bar = volmap::generate_kuhn_grid(12, 3, 3);
-  std::vector<std::uint8_t> boundary(bar.num_vertices(), 0);
-  for (std::size_t v = 0; v < bar.num_vertices(); ++v) {
-    const double* p = &bar.xyz[3 * v];
-    boundary[v] = p[0] == 0 || p[0] == 12 || p[1] == 0 || p[1] == 3 || p[2] == 0 || p[2] == 3;
-  }
-  GridCase c(std::move(bar), std::move(boundary));
+  GridCase c = scrambled_bar_case();
   std::size_t steps_single = 0, steps_bulk = 0;
   for (unsigned seed : {0u, 3u, 5u}) {
-    c.target0 = c.m0.xyz;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(-0.6, 0.6);
-    for (std::size_t v = 0; v < c.m0.num_vertices(); ++v)
-      if (!c.bnd0[v])
-        for (int d = 0; d < 3; ++d) c.target0[3 * v + d] += u(rng) * (d == 0 ? 3 : 1);
+    scramble_bar(c, seed);
     INFO("seed " << seed);
     const auto single = c.repair();
     CHECK(single.failed_clusters == 0);
