@@ -205,17 +205,22 @@ class VolumeMapper {
     }
     judged_stage("tutte3d", [&] { place_by_tutte(state_); });
     result_.start = StartMap::Tutte;
-    if (start == StartMap::Fewest && bad_ > 0 && !boundary_image_is_convex(state_)) {
-      const std::size_t tutte_bad = bad_;
-      judged_stage("radial-tutte", [&] { place_by_radial_tutte(state_); });
-      const bool radial_kept = result_.stages.back().nonpositive_after <= tutte_bad && result_.stages.back().failure.empty();
-      result_.start = radial_kept ? StartMap::Radial : StartMap::Tutte;
-      result_.other_start = radial_kept ? StartMap::Tutte : StartMap::Radial;
-      // A restart from the other start may follow: this run keeps its first share of the limit.
-      if (bad_ > 0 && options_.restart_share < 1 && total_.limited()) {
-        attempt_ = total_.first_part(options_.restart_share);
-        plan_schedule();
-      }
+    if (start != StartMap::Fewest || bad_ == 0) return;
+    if (boundary_image_is_convex(state_)) {
+      // Tutte keeps every free vertex inside a convex image: it starts alone and this run keeps the
+      // whole limit. The radial start is the second chance for a run that stalls with time left.
+      result_.other_start = StartMap::Radial;
+      return;
+    }
+    const std::size_t tutte_bad = bad_;
+    judged_stage("radial-tutte", [&] { place_by_radial_tutte(state_); });
+    const bool radial_kept = result_.stages.back().nonpositive_after <= tutte_bad && result_.stages.back().failure.empty();
+    result_.start = radial_kept ? StartMap::Radial : StartMap::Tutte;
+    result_.other_start = radial_kept ? StartMap::Tutte : StartMap::Radial;
+    // A restart from the other start may follow: this run keeps its first share of the limit.
+    if (bad_ > 0 && options_.restart_share < 1 && total_.limited()) {
+      attempt_ = total_.first_part(options_.restart_share);
+      plan_schedule();
     }
   }
 
@@ -498,11 +503,17 @@ VolumeMapResult run_mapper(const TetMeshData& input, const BoundaryMap& map, con
   }
 }
 
+// The least share of the limit left worth a restart (a run from the radial start needs its TLC and
+// at least one repair round).
+constexpr double kMinRestartShare = 0.1;
+
 // A run from the start with fewer non-positive tets that ended uncertified gets a second run from
 // the other start, unless an exact certificate proves that no map exists (at any refinement, or
-// at fixed connectivity without refinement).
-bool worth_a_restart(const VolumeMapResult& r, const VolumeMapOptions& options) {
+// at fixed connectivity without refinement), or too little time is left.
+bool worth_a_restart(const VolumeMapResult& r, const VolumeMapOptions& options, const TimeBudget& total) {
   if (r.certified || !r.other_start || options.restart_share >= 1) return false;
+  // A first run that kept the whole limit (a convex image) restarts only when it stalled early.
+  if (total.limited() && total.remaining() < kMinRestartShare * total.limit_seconds()) return false;
   if (r.feasibility.infeasible_with_any_refinement()) return false;
   return options.allow_refinement || r.infeasibility.empty();
 }
@@ -533,7 +544,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   const TimeBudget total(options.time_limit_seconds);
   std::shared_ptr<PreparedSource> prepared;
   VolumeMapResult first = run_mapper(input, map, options, nullptr, &prepared);  // validates the input (Error(BadInput))
-  if (!worth_a_restart(first, options)) return first;
+  if (!worth_a_restart(first, options, total)) return first;
   VolumeMapOptions again = options;
   again.start = *first.other_start;
   again.restart_share = 1;

@@ -95,6 +95,8 @@ struct VolumeMapOptions {
   // this fraction of the limit; when it ends uncertified (and no exact certificate proves the case
   // impossible), a second run from the other start gets the rest, and the certified run, else the
   // one with fewer non-positive tets, is returned. Without a time limit both run to their caps.
+  // On a convex image (Tutte alone starts) the first run keeps the whole limit, and the radial start
+  // gets what it leaves when it ends uncertified with at least a tenth of the limit left.
   // 1 = never restart.
   double restart_share = 0.5;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
@@ -126,7 +128,9 @@ struct VolumeMapResult {
   std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
   std::string certified_by;         // stage that produced the certified map
   StartMap start = StartMap::Tutte;  // the starting map this result was untangled from
-  std::optional<StartMap> other_start;  // when both starts were computed (StartMap::Fewest): the one not kept
+  // StartMap::Fewest: the start a restart would use (the one not kept; Radial when Tutte alone
+  // started on a convex image)
+  std::optional<StartMap> other_start;
   bool restarted = false;            // two runs (see restart_share); stages lists both, "restart" between
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
