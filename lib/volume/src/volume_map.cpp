@@ -290,10 +290,10 @@ class VolumeMapper {
   // descent and local FFM run on the finer mesh, judged as one stage (undone when the count ends
   // higher). Measured on coarse thin shapes whose last 1-4 tets no cone patch could reach (target
   // needles: no kernel point), one round certified fins -> pyr, fins -> tet and coarse limbs -> tet.
-  // Over the thin_coarse, surfaces and tetmeshes sets (results6) the local FFM alone lowered the
-  // count in 14 of 480 calls (690 s without progress); the split lowered it in 14 of 78 and then
-  // mostly finished the map within a second. At most kSplitRounds times per run, within the growth
-  // cap.
+  // Over the thin_coarse, surfaces and tetmeshes sets (bench/eval/stage_progress.py on the build
+  // before this order) the local FFM lowered the count in 14 of 498 calls (836 s without progress);
+  // the split lowered it in 14 of 78, 11 of them finishing the map. At most kSplitRounds times per
+  // run, within the growth cap.
   bool split_bad_tets() {
     static constexpr std::size_t kSplitMaxBad = 64, kSplitRounds = 6, kTetsPerBadTet = 40;
     if (bad_ == 0 || bad_ > kSplitMaxBad || split_rounds_ >= kSplitRounds || !cascade() || budget_->expired()) return false;
@@ -382,9 +382,9 @@ class VolumeMapper {
   }
 
   // §5 global FFM with the regular reference, then the rest shape, each followed by the link kernel,
-  // an early B1 attempt and local FFM. Only at fixed connectivity: where B1 may run, no global FFM
-  // stage lowered the count in 86 calls over the thin_coarse, surfaces and tetmeshes sets (results6;
-  // each was undone), and its time goes to the repair rounds instead.
+  // an early B1 attempt and local FFM. Only at fixed connectivity: where B1 may run, 1 of 136 global
+  // FFM stages lowered the count over the thin_coarse, surfaces and tetmeshes sets
+  // (bench/eval/stage_progress.py), and their time goes to the repair rounds instead.
   void global_ffm() {
     std::vector<ReferenceShape> refs = {ReferenceShape::RegularTet, ReferenceShape::RestShape};
     if (options_.ffm_rest_shape_first) std::swap(refs[0], refs[1]);
