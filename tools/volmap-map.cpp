@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
       ->check(finite_non_negative());
   app.add_option("--start", start, "starting map: tutte (Tutte 3D), radial (Tutte inside the boundary image projected onto a sphere about a kernel point, mapped back cone by cone), or fewest (default: Tutte, and on a non-convex boundary image also radial, keeping the one with fewer bad tets)")
       ->check(CLI::IsMember({"tutte", "radial", "fewest"}));
-  app.add_flag("--no-restart", no_restart, "with --start fewest: never restart from the other start (default: when both starts were computed and the first run is not certified in half the time limit, the other start gets the rest)");
+  app.add_flag("--no-restart", no_restart, "with --start fewest: never restart from the other start (default: when both starts were computed and the first run is not certified in half the time limit, the other start gets the rest; on a convex image, where Tutte starts alone, the radial start gets what an uncertified first run leaves, if at least a tenth of the limit)");
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
