@@ -1,6 +1,6 @@
 // volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom|polycube> <in.mesh> <out_map.txt>
 //                    [--domain file] [--cells <cells file|cross7|L3>] [--cell-size S]
-//                    [--refined out.mesh] [--volmap-precision] [--json]
+//                    [--refined out.mesh] [--volmap-precision] [--reference-splits] [--json]
 // `polycube:<cells>` is the same as `polycube --cells <cells>` (<volmap/surface/polycube.hpp>).
 // Maps the boundary of a genus-0 tet mesh (a valid VOLMAP input: input_mesh.hpp) onto a base domain
 // (see <volmap/surface/surface_map.hpp>), checks the map exactly and only then writes it (shortest
@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
                "volmap-surface-map"};
   std::string domain_name, mesh_path, map_path, domain_file, refined_path, cells;
   double cell_size = volmap::kDefaultPolycubeCellSize;
-  bool json = false, volmap_precision = false;
+  bool json = false, volmap_precision = false, reference_splits = false;
   app.add_option("domain", domain_name,
                  "cube, tet, pyr, octa, star, sphere, custom (with --domain) or polycube (with --cells; or "
                  "polycube:<cells>)")
@@ -43,6 +43,10 @@ int main(int argc, char** argv) {
                  "<map without extension>_in.mesh)");
   app.add_flag("--volmap-precision", volmap_precision,
                "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
+  app.add_flag("--reference-splits", reference_splits,
+               "split chords by VOLMAP's reference rule only (every edge joining two arc vertices, after each "
+               "arc; its split counts). Default: split only the chords whose ends lie on one straight side of "
+               "the domain, and fall back to the reference rule where that fails");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
@@ -85,7 +89,11 @@ int main(int argc, char** argv) {
 
     const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     volmap::SurfaceMapResult r =
-        volmap_tools::naming_file(mesh_path, [&] { return volmap::map_surface_to_domain(mesh, domain); });
+        volmap_tools::naming_file(mesh_path, [&] {
+          volmap::SurfaceMapOptions options;
+          options.reference_chord_splits = reference_splits;
+          return volmap::map_surface_to_domain(mesh, domain, options);
+        });
     if (sphere)
       r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},
                                     volmap::kSphereRadius);

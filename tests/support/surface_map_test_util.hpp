@@ -6,9 +6,10 @@
 
 namespace volmap_test {
 
-inline volmap::SurfaceMapResult map_and_recheck(const volmap::TetMeshData& mesh, const volmap::Domain& d) {
+inline volmap::SurfaceMapResult map_and_recheck(const volmap::TetMeshData& mesh, const volmap::Domain& d,
+                                                 const volmap::SurfaceMapOptions& options = {}) {
   volmap::SurfaceMapResult r;
-  REQUIRE_NOTHROW(r = volmap::map_surface_to_domain(mesh, d));
+  REQUIRE_NOTHROW(r = volmap::map_surface_to_domain(mesh, d, options));
   const auto c = volmap::check_surface_map(r.mesh, r.map, &d);
   CHECK(c.ok);
   CHECK(c.positive == c.boundary_triangles);

@@ -1,6 +1,7 @@
 // Surface mapping: bone and duck onto every domain (built-ins, sphere, the custom triprism), each map
-// re-checked exactly here on the refined mesh; split counts compared with the reference table
-// (volmap-reference.md §4: bone +1/+27/+50/+70/+663, duck +5/+0/+10/+22/+132); bad inputs refused.
+// re-checked exactly here on the refined mesh; with the reference's chord rule the split counts are
+// the reference table's (volmap-reference.md §4: bone +1/+27/+50/+70/+663, duck +5/+0/+10/+22/+132),
+// with the lean rule (default) never more; bad inputs refused.
 // The tool path writes files and is checked through volmap-surface-map-check. Long: all 20 G1 meshes.
 #include <doctest/doctest.h>
 #include <volmap/io/atomic_file.hpp>
@@ -29,7 +30,7 @@ static const char* kG1[] = {"bimba", "bird", "blade", "bone", "bumpy_sphere", "b
                             "pig", "ramses", "sphinx"};
 
 // Maps `name` to every built-in domain and the sphere; returns added vertices per domain.
-static std::vector<std::size_t> map_all(const std::string& name) {
+static std::vector<std::size_t> map_all(const std::string& name, const SurfaceMapOptions& options = {}) {
   std::vector<std::size_t> added;
   const auto path = volmap_test::data_file("volmap/G1/" + name + ".mesh");
   if (path.empty()) return added;
@@ -39,7 +40,7 @@ static std::vector<std::size_t> map_all(const std::string& name) {
     CAPTURE(dn);
     const Domain d = builtin_domain(dn);
     // Independent re-check: exact cones, coverage, all points on the domain, corners exact.
-    const SurfaceMapResult r = volmap_test::map_and_recheck(mesh, d);
+    const SurfaceMapResult r = volmap_test::map_and_recheck(mesh, d, options);
     CHECK(r.mesh.num_vertices() == mesh.num_vertices() + r.added_vertices);
     // Refinement keeps every tet VOLMAP-positive and old vertices where they were.
     const auto signs = orient3d_tets(r.mesh.xyz.data(), r.mesh.num_vertices(), r.mesh.tets.data(), r.mesh.num_tets(), nullptr);
@@ -59,22 +60,40 @@ static std::vector<std::size_t> map_all(const std::string& name) {
   return added;
 }
 
-TEST_CASE("bone and duck map onto every domain with the reference's split counts") {
+TEST_CASE("bone and duck map onto every domain with the reference's split counts, and with fewer by the lean rule") {
   VOLMAP_REQUIRE_DATA(bone, "volmap/G1/bone.mesh");
-  CHECK(map_all("bone") == std::vector<std::size_t>{1, 27, 50, 70, 663});
-  CHECK(map_all("duck") == std::vector<std::size_t>{5, 0, 10, 22, 132});
+  SurfaceMapOptions reference;
+  reference.reference_chord_splits = true;
+  const std::vector<std::size_t> bone_reference{1, 27, 50, 70, 663}, duck_reference{5, 0, 10, 22, 132};
+  CHECK(map_all("bone", reference) == bone_reference);
+  CHECK(map_all("duck", reference) == duck_reference);
+  // The lean rule (default) never adds more than the reference's on these, and far fewer on the star.
+  const std::vector<std::size_t> bone_lean = map_all("bone"), duck_lean = map_all("duck");
+  MESSAGE("lean rule: bone " << bone_lean[0] << " " << bone_lean[1] << " " << bone_lean[2] << " " << bone_lean[3] << " "
+                             << bone_lean[4] << ", duck " << duck_lean[0] << " " << duck_lean[1] << " " << duck_lean[2]
+                             << " " << duck_lean[3] << " " << duck_lean[4]);
+  for (std::size_t k = 0; k < 5; ++k) {
+    CHECK(bone_lean[k] <= bone_reference[k]);
+    CHECK(duck_lean[k] <= duck_reference[k]);
+  }
+  CHECK(2 * bone_lean[4] < bone_reference[4]);
 }
 
 TEST_CASE("duck onto the custom triprism domain") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/duck.mesh");
   VOLMAP_REQUIRE_DATA(dom_path, "volmap/custom_domains/triprism.txt");
   const Domain d = read_custom_domain(dom_path.string());
-  const auto r = map_surface_to_domain(read_medit(mesh_path.string()), d);
+  SurfaceMapOptions reference;
+  reference.reference_chord_splits = true;
+  const auto r = map_surface_to_domain(read_medit(mesh_path.string()), d, reference);
   const auto c = check_surface_map(r.mesh, r.map, &d);
   CHECK(c.ok);
   CHECK(c.corners_exact == 6);
   CHECK(r.map.size() == 1147 + r.added_vertices);  // duck has 1147 boundary vertices
   CHECK(r.added_vertices == 10);  // the reference: 10 splits, 1157 map lines (volmap-reference.md §3)
+  const auto lean = map_surface_to_domain(read_medit(mesh_path.string()), d);
+  CHECK(check_surface_map(lean.mesh, lean.map, &d).ok);
+  CHECK(lean.added_vertices <= r.added_vertices);
 }
 
 TEST_CASE("mirrored input and genus-1 boundaries are refused and a single tet is refined until it maps") {

@@ -140,14 +140,41 @@ TEST_CASE("split replay: the refined tets' boundary is the working surface, with
   }
 }
 
-TEST_CASE("embedded domain graph: simple disjoint arcs between their nodes, labelled edges, no chords") {
+// Whether graph vertices u and w lie on one straight line of the domain: the targets of the nodes of
+// every arc through u and every arc through w, compared by exact orientation on the target points.
+static bool on_one_domain_line(const Domain& d, const EmbeddedGraph& g, VertexHandle u, VertexHandle w) {
+  auto arcs_through = [&](VertexHandle v) {
+    std::vector<int> arcs;
+    for (std::size_t a = 0; a < g.arc_path.size(); ++a)
+      if (std::find(g.arc_path[a].begin(), g.arc_path[a].end(), v) != g.arc_path[a].end()) arcs.push_back(int(a));
+    return arcs;
+  };
+  for (int a : arcs_through(u))
+    for (int b : arcs_through(w)) {
+      const Point3 p = d.targets[d.arcs[a].from], q = d.targets[d.arcs[a].to];
+      bool line = true;
+      for (int node : {d.arcs[b].from, d.arcs[b].to}) {
+        const Point3 r = d.targets[node];
+        const double cx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
+        const double cy = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
+        const double cz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+        line = line && cx == 0 && cy == 0 && cz == 0;  // small integer targets: exact in doubles
+      }
+      if (line) return true;
+    }
+  return false;
+}
+
+TEST_CASE("embedded domain graph: simple disjoint arcs between their nodes, labelled edges, chords by the rule") {
   const TetMeshData grid = generate_kuhn_grid(4, 4, 4);
   const SourceTetMesh source(grid);
+  for (const ChordSplitRule rule : {ChordSplitRule::AfterEveryArc, ChordSplitRule::OnlyAlongOneLine})
   for (const char* name : {"cube", "octa", "star"}) {
     CAPTURE(name);
+    CAPTURE(int(rule));
     const Domain d = builtin_domain(name);
     WorkingSurface s(source.boundary_surface(), source.num_input_vertices());
-    const EmbeddedGraph g = embed_domain_graph(s, d, spanning_tree_first_order(d), {0, 0, 0}, {4, 4, 4});
+    const EmbeddedGraph g = embed_domain_graph(s, d, spanning_tree_first_order(d), rule, {0, 0, 0}, {4, 4, 4});
     REQUIRE_NOTHROW(check_rotations(s, d, g));
     std::vector<int> uses(s.mesh.n_vertices(), 0);
     for (std::size_t a = 0; a < d.arcs.size(); ++a) {
@@ -166,14 +193,24 @@ TEST_CASE("embedded domain graph: simple disjoint arcs between their nodes, labe
     }
     for (auto v : g.node_vertex) CHECK(uses[v.idx()] == 0);
     for (auto u : uses) CHECK(u <= 1);
-    std::size_t graph_edges = 0, labelled = 0;
+    std::size_t graph_edges = 0, labelled = 0, chords = 0;
     for (auto e : s.mesh.edges()) {
       const auto h = s.mesh.halfedge_handle(e, 0);
-      const bool both = s.is_on_graph(s.mesh.from_vertex_handle(h)) && s.is_on_graph(s.mesh.to_vertex_handle(h));
+      const VertexHandle u = s.mesh.from_vertex_handle(h), w = s.mesh.to_vertex_handle(h);
+      const bool both = s.is_on_graph(u) && s.is_on_graph(w);
       graph_edges += both;
       labelled += s.is_arc_edge(e);
-      if (both) CHECK(s.is_arc_edge(e));  // no chord
+      if (!both || s.is_arc_edge(e)) continue;
+      ++chords;
+      CHECK(rule == ChordSplitRule::OnlyAlongOneLine);    // the reference's rule leaves no chord
+      CHECK_FALSE(on_one_domain_line(d, g, u, w));        // the lean rule: none along one line
     }
-    CHECK(graph_edges == labelled);
+    CHECK(graph_edges == labelled + chords);
+    // The lean rule splits at most what the reference's does.
+    if (rule == ChordSplitRule::OnlyAlongOneLine) {
+      WorkingSurface r(source.boundary_surface(), source.num_input_vertices());
+      embed_domain_graph(r, d, spanning_tree_first_order(d), ChordSplitRule::AfterEveryArc, {0, 0, 0}, {4, 4, 4});
+      CHECK(s.splits.size() <= r.splits.size());
+    }
   }
 }

@@ -1,10 +1,13 @@
 // Tracing the domain's graph on the working surface (see arc_tracing.hpp). Paths are shortest paths
 // (edge length; A* with the straight-line distance as lower bound) that enter no graph vertex but
 // their end; the sector rule at both ends keeps the arcs around every node in the domain's cyclic
-// order.
+// order. Chords (edges off every arc joining two graph vertices) are split by the rule the caller
+// picks: the reference's after every arc, or once at the end only those whose ends lie on one
+// straight line of the domain (decided exactly on the domain's node targets).
 #include "arc_tracing.hpp"
 
 #include <volmap/core/error.hpp>
+#include <volmap/predicates.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +26,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 class ArcTracer {
  public:
-  ArcTracer(WorkingSurface& surface, const Domain& domain) : s_(surface), d_(domain) {
+  ArcTracer(WorkingSurface& surface, const Domain& domain, ChordSplitRule rule)
+      : s_(surface), d_(domain), rule_(rule) {
     g_.arc_path.resize(domain.arcs.size());
   }
 
@@ -39,12 +43,14 @@ class ArcTracer {
       else
         trace_arc(arc);
     }
+    if (rule_ == ChordSplitRule::OnlyAlongOneLine) split_chords_along_one_line();
     return std::move(g_);
   }
 
  private:
   WorkingSurface& s_;
   const Domain& d_;
+  ChordSplitRule rule_;
   EmbeddedGraph g_;
   // Dijkstra scratch, indexed by vertex index (grown after splits).
   std::vector<double> dist_;
@@ -53,6 +59,7 @@ class ArcTracer {
   std::vector<std::uint32_t> sector_a_, sector_b_;  // == stamp_: allowed first / last inner vertex
   std::uint32_t stamp_ = 0;
   std::vector<VertexHandle> ring_;
+  VertexHandle sector_first_, sector_last_;  // mark_sector's bounding arc neighbours
 
   void grow_scratch() {
     const std::size_t n = s_.num_vertices();
@@ -67,9 +74,21 @@ class ArcTracer {
   void place_nodes(const Point3& bmin, const Point3& bmax);
   VertexHandle arc_neighbour(int node, int arc) const;
   bool mark_sector(int node, int arc, std::vector<std::uint32_t>& stamps, std::string* between);
-  std::vector<VertexHandle> shortest_path(int node_a, int arc_a, int node_b, int arc_b, const std::string& what);
+  std::vector<VertexHandle> shortest_path(int node_a, int arc_a, int node_b, int arc_b, std::string* why);
+  std::vector<VertexHandle> traced_path(int node_a, int arc_a, int node_b, int arc_b, const std::string& what);
+  std::vector<VertexHandle> path_through_chords(int node_a, int arc_a, int node_b, int arc_b);
+  struct Sector {
+    bool constrained = false;
+    std::vector<char> faces;         // per face
+    std::vector<VertexHandle> ring;  // neighbours inside the sector
+    bool has(VertexHandle v) const { return !constrained || std::find(ring.begin(), ring.end(), v) != ring.end(); }
+  };
+  Sector sector(int node, int arc);
+  bool is_chord(EdgeHandle e) const;
   void commit(const std::vector<VertexHandle>& path, std::size_t first, std::size_t last, int arc);
   void split_chords(const std::vector<VertexHandle>& path);
+  std::vector<std::vector<char>> arcs_on_one_line() const;
+  void split_chords_along_one_line();
   void trace_arc(int arc);
   void trace_diagonal(const DomainDiagonal& diagonal);
 };
@@ -124,6 +143,8 @@ bool ArcTracer::mark_sector(int node, int arc, std::vector<std::uint32_t>& stamp
     return static_cast<int>(it - ring_.begin());
   };
   const int pp = pos(arc_neighbour(node, prev)), pn = pos(arc_neighbour(node, next));
+  sector_first_ = ring_[pp];
+  sector_last_ = ring_[pn];
   for (int k = 1; k < r; ++k) {
     const int q = (pp + k) % r;
     if (q == pn) break;
@@ -134,10 +155,10 @@ bool ArcTracer::mark_sector(int node, int arc, std::vector<std::uint32_t>& stamp
 }
 
 // Dijkstra from node_a's vertex to node_b's vertex over free vertices, leaving node_a inside the
-// sector of arc_a and entering node_b inside the sector of arc_b. Throws with the reason when the
-// free vertices reachable from the first sector never touch the last one.
-std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int node_b, int arc_b,
-                                                   const std::string& what) {
+// sector of arc_a and entering node_b inside the sector of arc_b. Returns no path, with the reason in
+// *why, when the free vertices reachable from the first sector never touch the last one; touched_
+// then holds node_a's vertex and every free vertex it reaches.
+std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int node_b, int arc_b, std::string* why) {
   const VertexHandle a = g_.node_vertex[node_a], b = g_.node_vertex[node_b];
   ++stamp_;
   std::string between_a, between_b;
@@ -188,10 +209,9 @@ std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int no
     });
   }
   if (!reached) {
-    std::string why = "the free vertices reachable from " + node_name(node_a) +
-                      (constrain_a ? " (between its " + between_a + ")" : "") + " never touch " + node_name(node_b) +
-                      (constrain_b ? " between its " + between_b : "");
-    fail("cannot trace " + what + ": " + why);
+    *why = "the free vertices reachable from " + node_name(node_a) + (constrain_a ? " (between its " + between_a + ")" : "") +
+           " never touch " + node_name(node_b) + (constrain_b ? " between its " + between_b : "");
+    return {};
   }
   std::vector<VertexHandle> path{b};
   while (path.back() != a) path.push_back(s_.mesh.from_vertex_handle(pred_[path.back().idx()]));
@@ -229,17 +249,203 @@ void ArcTracer::split_chords(const std::vector<VertexHandle>& path) {
   if (any) grow_scratch();
 }
 
+// same[a][b]: arcs a and b lie on one straight line of the domain (a == b, or the four node targets
+// are collinear, exactly). A polycube face's side may consist of several arcs in a row, and a star
+// face diagonal of two halves.
+std::vector<std::vector<char>> ArcTracer::arcs_on_one_line() const {
+  const std::size_t n = d_.arcs.size();
+  std::vector<std::vector<char>> same(n, std::vector<char>(n, 0));
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a; b < n; ++b) {
+      const double* p = d_.targets[d_.arcs[a].from].data();
+      const double* q = d_.targets[d_.arcs[a].to].data();
+      const bool one_line = a == b || (collinear(p, q, d_.targets[d_.arcs[b].from].data()) &&
+                                       collinear(p, q, d_.targets[d_.arcs[b].to].data()));
+      same[a][b] = same[b][a] = one_line ? 1 : 0;
+    }
+  return same;
+}
+
+// Lean rule, after the last arc: a chord is split only when its two ends lie on one straight line
+// of the domain (a graph vertex lies on its own arc; a node on every arc at it). Such a chord would
+// fall onto the polygon's side in the chart's Tutte embedding and flatten its triangles. Any other
+// chord joins two different sides of the chart's convex polygon, so its image crosses the polygon's
+// interior and Tutte's embedding stays injective (Floater 2003: a convex combination map onto a
+// convex polygon is one-to-one when no dividing edge has both ends on one side). The exact check of
+// the map still decides.
+void ArcTracer::split_chords_along_one_line() {
+  const std::vector<std::vector<char>> same = arcs_on_one_line();
+  std::vector<int> arc_of(s_.num_vertices(), -1);  // path-interior vertices
+  for (std::size_t a = 0; a < g_.arc_path.size(); ++a)
+    for (std::size_t i = 1; i + 1 < g_.arc_path[a].size(); ++i) arc_of[g_.arc_path[a][i].idx()] = static_cast<int>(a);
+  std::vector<int> node_of(s_.num_vertices(), -1);
+  for (std::size_t n = 0; n < g_.node_vertex.size(); ++n) node_of[g_.node_vertex[n].idx()] = static_cast<int>(n);
+  const auto arcs_at = [&](VertexHandle v) {
+    if (node_of[v.idx()] >= 0) return d_.rotation[node_of[v.idx()]];
+    return std::vector<int>{arc_of[v.idx()]};
+  };
+  std::vector<EdgeHandle> chords;
+  for (auto e : s_.mesh.edges()) {
+    if (s_.is_arc_edge(e)) continue;
+    const HalfedgeHandle h = s_.mesh.halfedge_handle(e, 0);
+    const VertexHandle u = s_.mesh.from_vertex_handle(h), w = s_.mesh.to_vertex_handle(h);
+    if (!s_.is_on_graph(u) || !s_.is_on_graph(w)) continue;
+    bool one_line = false;
+    for (int a : arcs_at(u))
+      for (int b : arcs_at(w)) one_line = one_line || (a >= 0 && b >= 0 && same[a][b]);
+    if (one_line) chords.push_back(e);
+  }
+  for (auto e : chords) s_.split_edge(e);
+  if (!chords.empty()) grow_scratch();
+}
+
+bool ArcTracer::is_chord(EdgeHandle e) const {
+  const HalfedgeHandle h = s_.mesh.halfedge_handle(e, 0);
+  return !s_.is_arc_edge(e) && s_.is_on_graph(s_.mesh.from_vertex_handle(h)) && s_.is_on_graph(s_.mesh.to_vertex_handle(h));
+}
+
+// The faces at `node`'s vertex that arc `arc` may use there (all of them while the node has no
+// traced arc) and the neighbours it may leave through (mark_sector's stamps, copied).
+ArcTracer::Sector ArcTracer::sector(int node, int arc) {
+  Sector sec;
+  sec.faces.assign(s_.mesh.n_faces(), 0);
+  ++stamp_;
+  std::string between;
+  sec.constrained = mark_sector(node, arc, sector_a_, &between);
+  s_.for_each_outgoing(g_.node_vertex[node], [&](HalfedgeHandle h) {
+    // Face (v, x, y), y the ring successor of x: inside the sector when x is stamped or is the arc
+    // neighbour the sector starts after, and y is stamped or is the neighbour it ends before.
+    const VertexHandle x = s_.mesh.to_vertex_handle(h);
+    const VertexHandle y = s_.mesh.to_vertex_handle(s_.mesh.next_halfedge_handle(h));
+    const bool x_stamped = sector_a_[x.idx()] == stamp_, y_stamped = sector_a_[y.idx()] == stamp_;
+    if (x_stamped) sec.ring.push_back(x);
+    const bool inside = !sec.constrained || ((x_stamped || x == sector_first_) && (y_stamped || y == sector_last_));
+    sec.faces[s_.mesh.face_handle(h).idx()] = inside ? 1 : 0;
+  });
+  return sec;
+}
+
+// A blocked arc (lean rule): the path from node_a to node_b that crosses the fewest chords, the
+// shortest among those, then each chord it crosses is split and its midpoint joins the path. The
+// search runs over vertices (node_a, node_b, free vertices) and chords; a step goes from a vertex
+// to a chord opposite it in a face, from a chord to a vertex opposite it or to another chord of one
+// of its two faces (after the split the midpoint sees both), each chord costing one split. The
+// sector rules hold through the faces at both nodes. Returns no path when even that fails.
+std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, int node_b, int arc_b) {
+  const VertexHandle a = g_.node_vertex[node_a], b = g_.node_vertex[node_b];
+  const Sector at_a = sector(node_a, arc_a), at_b = sector(node_b, arc_b);
+  const std::size_t nv = s_.mesh.n_vertices(), ne = s_.mesh.n_edges();
+  const auto position = [&](std::size_t state, double out[3]) {
+    if (state < nv) {
+      const double* p = s_.point(VertexHandle(static_cast<int>(state)));
+      out[0] = p[0], out[1] = p[1], out[2] = p[2];
+      return;
+    }
+    const HalfedgeHandle h = s_.mesh.halfedge_handle(EdgeHandle(static_cast<int>(state - nv)), 0);
+    const double* p = s_.point(s_.mesh.from_vertex_handle(h));
+    const double* q = s_.point(s_.mesh.to_vertex_handle(h));
+    for (int k = 0; k < 3; ++k) out[k] = 0.5 * (p[k] + q[k]);
+  };
+  const double* pb = s_.point(b);
+  const auto distance = [](const double* p, const double* q) {
+    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  };
+  // Keys (splits, length + lower bound), compared lexicographically: A* on the length stays exact
+  // because the split count never falls along a path.
+  using Key = std::pair<std::uint32_t, double>;
+  std::vector<Key> best(nv + ne, Key{~0u, kInf});
+  std::vector<std::uint32_t> pred(nv + ne, ~0u);
+  using Item = std::pair<Key, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  const auto lower_bound = [&](std::size_t state) {
+    double p[3];
+    position(state, p);
+    return (1 - 1e-6) * distance(p, pb);
+  };
+  const auto relax = [&](std::uint32_t from, std::size_t to) {
+    double p[3], q[3];
+    position(from, p);
+    position(to, q);
+    const Key key{best[from].first + (to >= nv ? 1u : 0u), best[from].second + distance(p, q)};
+    if (key < best[to]) {
+      best[to] = key;
+      pred[to] = from;
+      heap.push({Key{key.first, key.second + lower_bound(to)}, static_cast<std::uint32_t>(to)});
+    }
+  };
+  const auto enterable = [&](VertexHandle w, FaceHandle f) {  // vertex w reached from a chord in face f
+    if (w == b) return at_b.faces[f.idx()] != 0;
+    return !s_.is_on_graph(w);
+  };
+  best[a.idx()] = Key{0, 0};
+  heap.push({Key{0, lower_bound(a.idx())}, static_cast<std::uint32_t>(a.idx())});
+  bool reached = false;
+  while (!heap.empty()) {
+    const auto [key, state] = heap.top();
+    heap.pop();
+    if (key.first != best[state].first || key.second > best[state].second + lower_bound(state)) continue;  // stale
+    if (state == static_cast<std::uint32_t>(b.idx())) {
+      reached = true;
+      break;
+    }
+    if (state < nv) {
+      const VertexHandle u(static_cast<int>(state));
+      s_.for_each_outgoing(u, [&](HalfedgeHandle h) {
+        // along the edge u -> w, with shortest_path's rules
+        const VertexHandle w = s_.mesh.to_vertex_handle(h);
+        const bool edge_ok = (w == b || !s_.is_on_graph(w)) && (u != a || at_a.has(w)) && (w != b || at_b.has(u));
+        if (edge_ok) relax(state, w.idx());
+        // into the chord opposite u in the face of h
+        const EdgeHandle e = s_.mesh.edge_handle(s_.mesh.next_halfedge_handle(h));
+        if ((u != a || at_a.faces[s_.mesh.face_handle(h).idx()]) && is_chord(e)) relax(state, nv + e.idx());
+      });
+      continue;
+    }
+    const EdgeHandle e(static_cast<int>(state - nv));
+    for (int side = 0; side < 2; ++side) {
+      const HalfedgeHandle h = s_.mesh.halfedge_handle(e, side);  // x -> y in face (x, y, z)
+      const HalfedgeHandle n = s_.mesh.next_halfedge_handle(h);
+      const VertexHandle z = s_.mesh.to_vertex_handle(n);
+      if (enterable(z, s_.mesh.face_handle(h))) relax(state, z.idx());
+      for (const HalfedgeHandle other : {n, s_.mesh.next_halfedge_handle(n)}) {
+        const EdgeHandle o = s_.mesh.edge_handle(other);
+        if (is_chord(o)) relax(state, nv + o.idx());
+      }
+    }
+  }
+  if (!reached) return {};
+  std::vector<std::uint32_t> states{static_cast<std::uint32_t>(b.idx())};
+  while (states.back() != static_cast<std::uint32_t>(a.idx())) states.push_back(pred[states.back()]);
+  std::reverse(states.begin(), states.end());
+  std::vector<VertexHandle> path;
+  for (std::uint32_t st : states)
+    path.push_back(st < nv ? VertexHandle(static_cast<int>(st)) : s_.split_edge(EdgeHandle(static_cast<int>(st - nv))));
+  grow_scratch();
+  return path;
+}
+
+// shortest_path, or Error(Failed) naming `what`. Under the lean rule a blocked arc takes the path
+// through the fewest chords (path_through_chords), which are split.
+std::vector<VertexHandle> ArcTracer::traced_path(int node_a, int arc_a, int node_b, int arc_b, const std::string& what) {
+  std::string why;
+  std::vector<VertexHandle> path = shortest_path(node_a, arc_a, node_b, arc_b, &why);
+  if (path.empty() && rule_ == ChordSplitRule::OnlyAlongOneLine) path = path_through_chords(node_a, arc_a, node_b, arc_b);
+  if (path.empty()) fail("cannot trace " + what + ": " + why);
+  return path;
+}
+
 void ArcTracer::trace_arc(int arc) {
   const auto& da = d_.arcs[arc];
   const auto path =
-      shortest_path(da.from, arc, da.to, arc, "arc " + std::to_string(da.from) + "->" + std::to_string(da.to));
+      traced_path(da.from, arc, da.to, arc, "arc " + std::to_string(da.from) + "->" + std::to_string(da.to));
   commit(path, 0, path.size() - 1, arc);
-  split_chords(path);
+  if (rule_ == ChordSplitRule::AfterEveryArc) split_chords(path);
 }
 
 // A star face diagonal: one path, cut in its middle, which becomes the face node.
 void ArcTracer::trace_diagonal(const DomainDiagonal& dg) {
-  auto path = shortest_path(dg.from, dg.first_arc, dg.to, dg.second_arc,
+  auto path = traced_path(dg.from, dg.first_arc, dg.to, dg.second_arc,
                             "face diagonal " + std::to_string(dg.from) + "->" + std::to_string(dg.to));
   if (path.size() == 2) {  // a single edge: split it so the diagonal has a middle vertex
     const VertexHandle m = s_.split_edge(s_.mesh.edge_handle(s_.mesh.find_halfedge(path[0], path[1])));
@@ -250,14 +456,14 @@ void ArcTracer::trace_diagonal(const DomainDiagonal& dg) {
   g_.node_vertex[dg.middle_node] = path[h];
   commit(path, 0, h, dg.first_arc);
   commit(path, h, path.size() - 1, dg.second_arc);
-  split_chords(path);
+  if (rule_ == ChordSplitRule::AfterEveryArc) split_chords(path);
 }
 
 }  // namespace
 
 EmbeddedGraph embed_domain_graph(WorkingSurface& surface, const Domain& domain, const std::vector<int>& order,
-                                 const Point3& bmin, const Point3& bmax) {
-  return ArcTracer(surface, domain).run(order, bmin, bmax);
+                                 ChordSplitRule rule, const Point3& bmin, const Point3& bmax) {
+  return ArcTracer(surface, domain, rule).run(order, bmin, bmax);
 }
 
 void check_rotations(const WorkingSurface& s, const Domain& d, const EmbeddedGraph& g) {

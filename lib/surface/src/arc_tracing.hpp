@@ -7,6 +7,7 @@
 #include "working_surface.hpp"
 
 #include <volmap/surface/domain.hpp>
+#include <volmap/surface/surface_map.hpp>
 
 #include <cstddef>
 #include <vector>
@@ -23,11 +24,11 @@ struct EmbeddedGraph {
 // [bmin, bmax] (ties to the smallest vid, vertices taken by earlier nodes skipped), then traces the
 // arcs in `order` (Domain::trace_order or spanning_tree_first_order): shortest paths over free
 // vertices, leaving and entering each node inside the sector its rotation leaves between the arcs
-// already traced there. After each arc, every edge joining two graph vertices that is not an arc
-// edge (a chord) is split. Labels the surface (on_graph, arc_label). Throws Error(Failed) naming the
-// arc when no path exists.
+// already traced there. Chords (edges joining two graph vertices that are not arc edges) are split
+// by `rule` (ChordSplitRule in surface_map.hpp). Labels the surface (on_graph, arc_label). Throws
+// Error(Failed) naming the arc when no path exists.
 EmbeddedGraph embed_domain_graph(WorkingSurface& surface, const Domain& domain, const std::vector<int>& order,
-                                 const Point3& bmin, const Point3& bmax);
+                                 ChordSplitRule rule, const Point3& bmin, const Point3& bmax);
 
 // Throws Error(Failed) unless the arcs leave every node in the domain's cyclic order.
 void check_rotations(const WorkingSurface& surface, const Domain& domain, const EmbeddedGraph& graph);

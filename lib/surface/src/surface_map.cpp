@@ -13,6 +13,7 @@
 #include "working_surface.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,8 @@ void require_sphere_topology(const BoundarySurface& b) {
 struct Attempt {
   const std::vector<int>* order;
   int subdivisions;  // rounds of splitting every boundary edge first
-  const char* name;
+  ChordSplitRule chords;
+  std::string name;
 };
 
 // Splits every edge of the surface, `rounds` times (surfaces too coarse for the domain).
@@ -66,7 +68,7 @@ SurfaceMapResult run_attempt(SourceTetMesh& source, const BoundarySurface& bound
                              const Attempt& attempt, const Point3& bmin, const Point3& bmax) {
   WorkingSurface surface(boundary, source.num_input_vertices());
   subdivide(surface, attempt.subdivisions);
-  const EmbeddedGraph graph = embed_domain_graph(surface, domain, *attempt.order, bmin, bmax);
+  const EmbeddedGraph graph = embed_domain_graph(surface, domain, *attempt.order, attempt.chords, bmin, bmax);
   check_rotations(surface, domain, graph);
   const std::vector<double> img = embed_charts(surface, domain, graph);
   SourceTetMesh::Refined refined = source.refine(surface.splits);
@@ -90,7 +92,7 @@ SurfaceMapResult run_attempt(SourceTetMesh& source, const BoundarySurface& bound
 
 }  // namespace
 
-SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain) {
+SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain, const SurfaceMapOptions& options) {
   if (mesh.num_tets() == 0) bad_input("the mesh has no tets");
   SourceTetMesh source(mesh);
   require_positive_tets(mesh);
@@ -102,28 +104,41 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
       bmin[k] = std::min(bmin[k], mesh.xyz[3 * v + k]);
       bmax[k] = std::max(bmax[k], mesh.xyz[3 * v + k]);
     }
-  // Attempts: the reference order; a spanning tree first; then, for surfaces too coarse for the
-  // domain (fewer free vertices than nodes, no room between arcs), 1 and 2 rounds of splitting every
-  // boundary edge first (spanning tree order).
+  // Attempts (surface_map.hpp, step 3), in groups: the reference order, then a spanning tree first
+  // (skipped where it is the reference order); then, for surfaces too coarse for the domain (fewer
+  // free vertices than nodes, no room between arcs), 1 and 2 rounds of splitting every boundary
+  // edge first (spanning tree order). Within a group both chord rules run (the reference's alone
+  // with options.reference_chord_splits) and the map that adds fewer vertices wins (the lean one on
+  // a tie); the first group with a map ends the search.
   const std::vector<int> reference = domain.trace_order();
   const std::vector<int> tree = spanning_tree_first_order(domain);
-  const Attempt attempts[] = {{&reference, 0, "reference arc order"},
-                              {&tree, 0, "spanning tree first"},
-                              {&tree, 1, "spanning tree first after 1 subdivision round"},
-                              {&tree, 2, "spanning tree first after 2 subdivision rounds"}};
   std::vector<std::string> failed;
-  for (const Attempt& a : attempts) {
-    if (a.order == &tree && a.subdivisions == 0 && tree == reference) continue;
-    try {
-      SurfaceMapResult r = run_attempt(source, boundary, domain, a, bmin, bmax);
-      r.attempt = a.name;
-      r.failed_attempts = std::move(failed);
-      return r;
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::Failed) throw;
-      failed.push_back(std::string(a.name) + ": " + e.reason());
+  for (int subdivisions = 0; subdivisions <= 2; ++subdivisions)
+    for (const std::vector<int>* order : {&reference, &tree}) {
+      if (subdivisions > 0 && order == &reference) continue;
+      if (order == &tree && subdivisions == 0 && tree == reference) continue;
+      std::string name = order == &reference ? "reference arc order" : "spanning tree first";
+      if (subdivisions > 0)
+        name += " after " + std::to_string(subdivisions) + " subdivision round" + (subdivisions > 1 ? "s" : "");
+      std::vector<Attempt> group;
+      if (!options.reference_chord_splits) group.push_back({order, subdivisions, ChordSplitRule::OnlyAlongOneLine, name});
+      group.push_back({order, subdivisions, ChordSplitRule::AfterEveryArc, name + ", reference chord splits"});
+      std::optional<SurfaceMapResult> best;
+      for (const Attempt& a : group) {
+        try {
+          SurfaceMapResult r = run_attempt(source, boundary, domain, a, bmin, bmax);
+          r.attempt = a.name;
+          if (!best || r.added_vertices < best->added_vertices) best = std::move(r);
+        } catch (const Error& e) {
+          if (e.kind() != ErrorKind::Failed) throw;
+          failed.push_back(a.name + ": " + e.reason());
+        }
+      }
+      if (best) {
+        best->failed_attempts = std::move(failed);
+        return std::move(*best);
+      }
     }
-  }
   std::string all;
   for (const auto& f : failed) all += (all.empty() ? "" : "; ") + f;
   throw Error(ErrorKind::Failed, "", 0, "cannot map the boundary onto " + domain.name + " (" + all + ")");

@@ -10,17 +10,20 @@
 //     so the embedded graph always has the domain's cyclic order of arcs around every node.
 //     Star: the 6 face diagonals are traced as one path each and cut at h = floor(|p|/2); p[h] is
 //     the face node.
-//     If an arc cannot be traced in that order (the reference order can close a cycle, e.g. the
-//     octahedron's equator, with two still isolated nodes on the same side), everything is redone
-//     with a spanning tree of the nodes traced first, which keeps the partial embedding equivalent
-//     to the domain's at every step. Surfaces too coarse for the domain are then retried after 1 and
-//     2 rounds of splitting every boundary edge (on the tets as well).
-//  3. Refinement (new vertices appended, ids stable): after each arc every boundary edge joining two
-//     arc/node vertices that is not an arc edge is split at its midpoint, which keeps a free path
-//     between any two arcs (paper Fig. 4) and makes every chart Tutte-embeddable. The splits are
-//     made on the surface (OpenMesh's 2-to-4 split) and replayed at the end on a TetMesh with
-//     TetMesh::split_edge (all tets around the edge), which appends vertices in the same order; the
-//     new tets are checked exactly.
+//  3. Chord splits (new vertices appended, ids stable; ChordSplitRule): a chord is a boundary edge
+//     off every arc whose two ends are graph vertices. The lean rule (default) splits, after the
+//     last arc, only the chords whose two ends lie on one straight line of the domain: every other
+//     chord crosses its chart's convex polygon, which Tutte's embedding allows. The reference's rule
+//     splits every chord after each arc, which also keeps a free path between any two arcs (paper
+//     Fig. 4) but multiplies the boundary of coarse meshes (coarse tentacles -> star: 2,165 new
+//     vertices on 1,010). The splits are made on the surface (OpenMesh's 2-to-4 split) and replayed
+//     at the end on a TetMesh with TetMesh::split_edge (all tets around the edge), which appends
+//     vertices in the same order; the new tets are checked exactly.
+//     Attempts, each from the input surface, the first that passes the exact check wins: the
+//     reference arc order, then a spanning tree of the nodes first (the reference order can close a
+//     cycle, e.g. the octahedron's equator, with two still isolated nodes on the same side), each
+//     with the lean rule and then the reference's; surfaces too coarse for the domain are then
+//     retried after 1 and 2 rounds of splitting every boundary edge (on the tets as well).
 //  4. Charts: boundary triangles flooded between arcs, each matched to its domain face by the side of
 //     its arcs; Tutte's embedding (uniform weights) in the face plane with the chart boundary on the
 //     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart. A
@@ -51,10 +54,23 @@ struct SurfaceMapResult {
   std::vector<std::string> failed_attempts;  // "<attempt>: <reason>" for every earlier attempt
 };
 
-// Maps the boundary of `mesh` onto `domain`. Throws Error(Failed) when an arc cannot be traced, the
-// embedding does not match the domain or the exact check fails; Error(BadInput) for a mesh whose
+// Which chords (boundary edges off every arc joining two graph vertices) are split (step 3 above).
+enum class ChordSplitRule {
+  OnlyAlongOneLine,  // lean: after the last arc, the chords whose ends lie on one line of the domain
+  AfterEveryArc,     // the reference's: every chord, after each arc
+};
+
+struct SurfaceMapOptions {
+  // true: only the reference's chord rule is tried (its split counts, e.g. to compare with VOLMAP's
+  // own surface maps); false: the lean rule first, the reference's where it fails.
+  bool reference_chord_splits = false;
+};
+
+// Maps the boundary of `mesh` onto `domain`. Throws Error(Failed) when no attempt traces the arcs,
+// matches the domain's embedding and passes the exact check; Error(BadInput) for a mesh whose
 // boundary is not a closed manifold surface.
-SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain);
+SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain,
+                                       const SurfaceMapOptions& options = {});
 
 // Sphere maps: the central projection of a star-shaped map (in practice the cube map) onto the
 // sphere of radius `radius` around `centre`, judged like every map: every cone positive about the
