@@ -1,5 +1,5 @@
 // Charts of the embedded domain graph and their planar embedding (internal to lib/surface; the
-// algorithm is volmap-reference.md §4.2 step 5).
+// algorithm is volmap-reference.md §4.2 step 6).
 // Conventions: the image of surface vertex v is img[3*v.idx() .. +3]; nodes sit exactly on their
 // targets, arc vertices on the straight segment between their nodes' targets spaced by arc length,
 // chart vertices in the plane of their domain face (up to rounding).
