@@ -88,15 +88,14 @@ int main(int argc, char** argv) {
     volmap::AtomicOutput& refined = files.tet_mesh_output(refined_out, "refined mesh");
 
     const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
-    volmap::SurfaceMapResult r =
-        volmap_tools::naming_file(mesh_path, [&] {
-          volmap::SurfaceMapOptions options;
-          options.reference_chord_splits = reference_splits;
-          return volmap::map_surface_to_domain(mesh, domain, options);
-        });
-    if (sphere)
-      r = volmap::project_to_sphere(r, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]},
-                                    volmap::kSphereRadius);
+    volmap::SurfaceMapOptions options;
+    options.reference_chord_splits = reference_splits;
+    volmap::SurfaceMapResult r = volmap_tools::naming_file(mesh_path, [&] {
+      if (sphere)
+        return volmap::map_surface_to_sphere(
+            mesh, {volmap::kSphereCentre[0], volmap::kSphereCentre[1], volmap::kSphereCentre[2]}, volmap::kSphereRadius, options);
+      return volmap::map_surface_to_domain(mesh, domain, options);
+    });
     if (volmap_precision) {
       // Write the rounded map, read the written file back and check exactly what was written.
       volmap::write_boundary_map(map_out, r.map, volmap::MapPrecision::Volmap6);

@@ -87,6 +87,27 @@ TEST_CASE("coarse tentacles onto the star: the surface map splits only the chord
   }
 }
 
+TEST_CASE("coarse encrusted cube onto the sphere: the lean cube map does not balance, the reference's does") {
+  const auto surface = volmap_test::data_file("surfaces/nightmare_of_polycubes/encrusted_cube.stl");
+  if (surface.empty() || !fs::exists(volmap_test::tool("volmap-tetrahedralize"))) {
+    MESSAGE("skipped: needs ../shared/data/surfaces and volmap-tetrahedralize (TetGen)");
+    return;
+  }
+  const fs::path d = volmap_test::scratch_dir("coarse_sphere");
+  const std::string mesh = (d / "encrusted_cube.mesh").string(), map = (d / "sphere.txt").string(),
+                    in = (d / "sphere_in.mesh").string();
+  REQUIRE(run(tool("volmap-tetrahedralize") + " " + quote(surface.string()) + " " + quote(mesh) + " --coarse > /dev/null").code == 0);
+  // The projection of the lean cube map (611 tets, no split) stays inverted about the centroid of
+  // its points after every balancing round; volmap-surface-map falls back to the reference's cube map.
+  const auto r = run(tool("volmap-surface-map") + " sphere " + quote(mesh) + " " + quote(map) + " --refined " + quote(in) + " --json");
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["attempt"].get<std::string>().find("reference chord splits") != std::string::npos);
+  const std::string source = fs::exists(in) ? in : mesh;
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(source) + " " + quote(map) + " > /dev/null").code == 0);
+  CHECK(run(tool("volmap-surface-map-check") + " " + quote(source) + " " + quote(map) + " --domain sphere > /dev/null").code == 0);
+}
+
 TEST_CASE("coarse thin calibration cube onto the star: chords over the valleys leave in B0 and the map certifies from either start") {
   if (!fs::exists(volmap_test::tool("volmap-tetrahedralize"))) {
     MESSAGE("skipped: volmap-tetrahedralize is not built (needs TetGen)");

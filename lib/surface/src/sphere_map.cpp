@@ -351,4 +351,26 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
   return out;
 }
 
+SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& centre, double radius,
+                                       const SurfaceMapOptions& options) {
+  const Domain cube = builtin_domain("cube");
+  std::string lean_failure;
+  if (!options.reference_chord_splits) {
+    try {
+      return project_to_sphere(map_surface_to_domain(mesh, cube, options), centre, radius);
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Failed) throw;
+      lean_failure = e.reason();
+    }
+  }
+  SurfaceMapOptions reference = options;
+  reference.reference_chord_splits = true;
+  try {
+    return project_to_sphere(map_surface_to_domain(mesh, cube, reference), centre, radius);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Failed || lean_failure.empty()) throw;
+    throw Error(ErrorKind::Failed, "", 0, lean_failure + "; with the reference's chord splits: " + e.reason());
+  }
+}
+
 }  // namespace volmap

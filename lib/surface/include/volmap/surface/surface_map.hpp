@@ -81,6 +81,14 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
 // check_surface_map (sphere options). Throws Error(Failed) when that does not converge.
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Point3& centre, double radius);
 
+// The sphere map of `volmap-surface-map sphere`: the cube map projected (project_to_sphere). A cube
+// map by the lean chord rule can leave too few points for the balancing (a coarse surface's few
+// vertices crowd where the cube's corners pull them); then the cube map by the reference's rule,
+// whose extra arc-side vertices spread the image, is projected instead. Throws Error(Failed) with
+// both reasons when neither balances.
+SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& centre, double radius,
+                                       const SurfaceMapOptions& options = {});
+
 // The sphere domain used by `volmap-surface-map sphere`: centre (50,50,50), radius 50.
 inline constexpr double kSphereCentre[3] = {50, 50, 50};
 inline constexpr double kSphereRadius = 50;
