@@ -618,12 +618,16 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
   result.nonpositive_before = result.nonpositive_after = bad.size();
   if (bad.empty()) return result;
   int rings = options.rings;
-  bool other_reference_tried = false;
+  bool other_reference_tried = false, rings_grown = false;
+  std::size_t failed_region_tets = 0;  // the region both references last failed on
   ReferenceShape reference = options.reference;
   for (int round = 0; round < options.max_rounds && !bad.empty(); ++round) {
     if (budget.expired()) break;
-    result.rounds = round + 1;
     LocalRegion region = extract_local_region(source, locked, target_xyz, bad, rings);
+    // More rings that add no tet give the same region both references just failed on.
+    if (rings_grown && region.num_tets() == failed_region_tets) break;
+    rings_grown = false;
+    result.rounds = round + 1;
     result.largest_region_tets = std::max(result.largest_region_tets, region.num_tets());
     const std::size_t sub_before = count_nonpositive(region.target, region.tets);
     std::size_t sub_after = sub_before;
@@ -654,6 +658,8 @@ LocalUntangleResult ffm_local_untangle(const TetMesh& source, const std::vector<
       other_reference_tried = false;
       reference = options.reference;
       rings += options.ring_step;
+      rings_grown = true;
+      failed_region_tets = region.num_tets();
       if (rings > options.max_rings) break;
     }
     bad = nonpositive_tets(target_xyz, tets);
