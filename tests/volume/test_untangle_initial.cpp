@@ -105,6 +105,35 @@ TEST_CASE("local FFM fixes one displaced vertex and moves nothing outside its re
       }
 }
 
+TEST_CASE("local FFM stops once more rings add nothing to the region it failed on") {
+  // A 2x2x2 Kuhn grid with one free vertex: a tet of locked vertices is inverted by mirroring one
+  // of its vertices across the other three's plane. Nothing free can fix it, and the region stops
+  // growing after a ring or two: the two references fail there once each, and no ring is tried
+  // again on the same region (before, the rounds ran to max_rounds re-solving it).
+  const int n = 2;
+  auto m = map_test::kuhn_grid(n);
+  auto bnd = map_test::grid_boundary_flags(n);
+  auto target = m.xyz;
+  std::size_t locked_tet = m.num_tets();
+  for (std::size_t t = 0; t < m.num_tets() && locked_tet == m.num_tets(); ++t)
+    if (bnd[m.tets[4 * t]] && bnd[m.tets[4 * t + 1]] && bnd[m.tets[4 * t + 2]] && bnd[m.tets[4 * t + 3]]) locked_tet = t;
+  REQUIRE(locked_tet < m.num_tets());
+  const std::uint32_t* q = &m.tets[4 * locked_tet];
+  const Eigen::Vector3d a(&m.xyz[3 * q[1]]), b(&m.xyz[3 * q[2]]), c(&m.xyz[3 * q[3]]), p(&m.xyz[3 * q[0]]);
+  const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+  const Eigen::Vector3d mirrored = p - 2 * normal.dot(p - a) * normal;
+  for (int k = 0; k < 3; ++k) target[3 * q[0] + k] = mirrored[k];
+  const std::size_t bad = volmap::count_nonpositive(target, m.tets);
+  REQUIRE(bad > 0);
+  volmap::LocalUntangleOptions lo;
+  lo.rings = 1;
+  const auto r = volmap::ffm_local_untangle(volmap::TetMesh(m), bnd, target, lo);
+  CHECK(r.nonpositive_after == bad);
+  MESSAGE("rounds " << r.rounds << ", region " << r.largest_region_tets << " of " << m.num_tets() << " tets");
+  CHECK(r.rounds <= 4);
+  CHECK(r.rounds < lo.max_rounds);
+}
+
 TEST_CASE("FFM warm-start epsilon certifies a nearly valid map") {
   // A valid map with one displaced vertex: the warm start (ε from D_min, never 0) certifies like ε = 1.
   const int n = 5;
