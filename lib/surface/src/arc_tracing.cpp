@@ -326,22 +326,26 @@ ArcTracer::Sector ArcTracer::sector(int node, int arc) {
 }
 
 // A blocked arc (lean rule): the path from node_a to node_b that crosses the fewest chords, the
-// shortest among those, then each chord it crosses is split and its midpoint joins the path. The
-// search runs over vertices (node_a, node_b, free vertices) and chords; a step goes from a vertex
-// to a chord opposite it in a face, from a chord to a vertex opposite it or to another chord of one
-// of its two faces (after the split the midpoint sees both), each chord costing one split. The
-// sector rules hold through the faces at both nodes. Returns no path when even that fails.
+// shortest among those; each chord it crosses is split and its midpoint joins the path. The search
+// runs over vertices (node_a, node_b, free vertices) and chord crossings. A crossing is a chord
+// halfedge h: the path enters the chord from the face of opposite(h) and leaves into face(h) =
+// (from(h), to(h), z). From a vertex u the path may cross the chord opposite u in a face of u; from
+// a crossing it goes on to z, or crosses one of the two other edges of face(h) (after the split the
+// midpoint sees z and both of them). Every step thus enters a new face, so the consecutive path
+// elements stay adjacent after the splits (a shortest path never enters a face twice: it could cut
+// across that face with fewer crossings). The sector rules hold through the faces at both nodes.
+// Returns no path when even that fails.
 std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, int node_b, int arc_b) {
   const VertexHandle a = g_.node_vertex[node_a], b = g_.node_vertex[node_b];
   const Sector at_a = sector(node_a, arc_a), at_b = sector(node_b, arc_b);
-  const std::size_t nv = s_.mesh.n_vertices(), ne = s_.mesh.n_edges();
-  const auto position = [&](std::size_t state, double out[3]) {
+  const std::size_t nv = s_.mesh.n_vertices(), nh = s_.mesh.n_halfedges();
+  const auto position = [&](std::size_t state, double out[3]) {  // a vertex, or a crossed chord's midpoint
     if (state < nv) {
       const double* p = s_.point(VertexHandle(static_cast<int>(state)));
       out[0] = p[0], out[1] = p[1], out[2] = p[2];
       return;
     }
-    const HalfedgeHandle h = s_.mesh.halfedge_handle(EdgeHandle(static_cast<int>(state - nv)), 0);
+    const HalfedgeHandle h(static_cast<int>(state - nv));
     const double* p = s_.point(s_.mesh.from_vertex_handle(h));
     const double* q = s_.point(s_.mesh.to_vertex_handle(h));
     for (int k = 0; k < 3; ++k) out[k] = 0.5 * (p[k] + q[k]);
@@ -351,18 +355,18 @@ std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, 
     const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     return std::sqrt(dx * dx + dy * dy + dz * dz);
   };
-  // Keys (splits, length + lower bound), compared lexicographically: A* on the length stays exact
-  // because the split count never falls along a path.
-  using Key = std::pair<std::uint32_t, double>;
-  std::vector<Key> best(nv + ne, Key{~0u, kInf});
-  std::vector<std::uint32_t> pred(nv + ne, ~0u);
-  using Item = std::pair<Key, std::uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   const auto lower_bound = [&](std::size_t state) {
     double p[3];
     position(state, p);
     return (1 - 1e-6) * distance(p, pb);
   };
+  // Keys (crossings, length + lower bound), compared lexicographically: A* on the length stays exact
+  // because the crossing count never falls along a path.
+  using Key = std::pair<std::uint32_t, double>;
+  std::vector<Key> best(nv + nh, Key{~0u, kInf});
+  std::vector<std::uint32_t> pred(nv + nh, ~0u);
+  using Item = std::pair<Key, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
   const auto relax = [&](std::uint32_t from, std::size_t to) {
     double p[3], q[3];
     position(from, p);
@@ -374,9 +378,8 @@ std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, 
       heap.push({Key{key.first, key.second + lower_bound(to)}, static_cast<std::uint32_t>(to)});
     }
   };
-  const auto enterable = [&](VertexHandle w, FaceHandle f) {  // vertex w reached from a chord in face f
-    if (w == b) return at_b.faces[f.idx()] != 0;
-    return !s_.is_on_graph(w);
+  const auto cross = [&](std::uint32_t from, HalfedgeHandle entered) {  // the chord of `entered`, into its other face
+    if (is_chord(s_.mesh.edge_handle(entered))) relax(from, nv + s_.mesh.opposite_halfedge_handle(entered).idx());
   };
   best[a.idx()] = Key{0, 0};
   heap.push({Key{0, lower_bound(a.idx())}, static_cast<std::uint32_t>(a.idx())});
@@ -394,25 +397,18 @@ std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, 
       s_.for_each_outgoing(u, [&](HalfedgeHandle h) {
         // along the edge u -> w, with shortest_path's rules
         const VertexHandle w = s_.mesh.to_vertex_handle(h);
-        const bool edge_ok = (w == b || !s_.is_on_graph(w)) && (u != a || at_a.has(w)) && (w != b || at_b.has(u));
-        if (edge_ok) relax(state, w.idx());
-        // into the chord opposite u in the face of h
-        const EdgeHandle e = s_.mesh.edge_handle(s_.mesh.next_halfedge_handle(h));
-        if ((u != a || at_a.faces[s_.mesh.face_handle(h).idx()]) && is_chord(e)) relax(state, nv + e.idx());
+        if ((w == b || !s_.is_on_graph(w)) && (u != a || at_a.has(w)) && (w != b || at_b.has(u))) relax(state, w.idx());
+        // across the chord opposite u in the face of h
+        if (u != a || at_a.faces[s_.mesh.face_handle(h).idx()]) cross(state, s_.mesh.next_halfedge_handle(h));
       });
       continue;
     }
-    const EdgeHandle e(static_cast<int>(state - nv));
-    for (int side = 0; side < 2; ++side) {
-      const HalfedgeHandle h = s_.mesh.halfedge_handle(e, side);  // x -> y in face (x, y, z)
-      const HalfedgeHandle n = s_.mesh.next_halfedge_handle(h);
-      const VertexHandle z = s_.mesh.to_vertex_handle(n);
-      if (enterable(z, s_.mesh.face_handle(h))) relax(state, z.idx());
-      for (const HalfedgeHandle other : {n, s_.mesh.next_halfedge_handle(n)}) {
-        const EdgeHandle o = s_.mesh.edge_handle(other);
-        if (is_chord(o)) relax(state, nv + o.idx());
-      }
-    }
+    const HalfedgeHandle h(static_cast<int>(state - nv));  // leaving into face (from(h), to(h), z)
+    const HalfedgeHandle n = s_.mesh.next_halfedge_handle(h);
+    const VertexHandle z = s_.mesh.to_vertex_handle(n);
+    if (z == b ? at_b.faces[s_.mesh.face_handle(h).idx()] != 0 : !s_.is_on_graph(z)) relax(state, z.idx());
+    cross(state, n);
+    cross(state, s_.mesh.next_halfedge_handle(n));
   }
   if (!reached) return {};
   std::vector<std::uint32_t> states{static_cast<std::uint32_t>(b.idx())};
@@ -420,7 +416,8 @@ std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, 
   std::reverse(states.begin(), states.end());
   std::vector<VertexHandle> path;
   for (std::uint32_t st : states)
-    path.push_back(st < nv ? VertexHandle(static_cast<int>(st)) : s_.split_edge(EdgeHandle(static_cast<int>(st - nv))));
+    path.push_back(st < nv ? VertexHandle(static_cast<int>(st))
+                           : s_.split_edge(s_.mesh.edge_handle(HalfedgeHandle(static_cast<int>(st - nv)))));
   grow_scratch();
   return path;
 }
