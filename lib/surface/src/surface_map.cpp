@@ -108,7 +108,7 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
   // (skipped where it is the reference order); then, for surfaces too coarse for the domain (fewer
   // free vertices than nodes, no room between arcs), 1 and 2 rounds of splitting every boundary
   // edge first (spanning tree order). Within a group both chord rules run (the reference's alone
-  // with options.reference_chord_splits) and the map that adds fewer vertices wins (the lean one on
+  // with options.reference_chord_splits) and the map whose mesh has fewer tets wins (the lean one on
   // a tie); the first group with a map ends the search.
   const std::vector<int> reference = domain.trace_order();
   const std::vector<int> tree = spanning_tree_first_order(domain);
@@ -128,7 +128,7 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
         try {
           SurfaceMapResult r = run_attempt(source, boundary, domain, a, bmin, bmax);
           r.attempt = a.name;
-          if (!best || r.added_vertices < best->added_vertices) best = std::move(r);
+          if (!best || r.mesh.num_tets() < best->mesh.num_tets()) best = std::move(r);
         } catch (const Error& e) {
           if (e.kind() != ErrorKind::Failed) throw;
           failed.push_back(a.name + ": " + e.reason());

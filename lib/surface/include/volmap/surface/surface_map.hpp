@@ -19,11 +19,12 @@
 //     vertices on 1,010). The splits are made on the surface (OpenMesh's 2-to-4 split) and replayed
 //     at the end on a TetMesh with TetMesh::split_edge (all tets around the edge), which appends
 //     vertices in the same order; the new tets are checked exactly.
-//     Attempts, each from the input surface, the first that passes the exact check wins: the
-//     reference arc order, then a spanning tree of the nodes first (the reference order can close a
-//     cycle, e.g. the octahedron's equator, with two still isolated nodes on the same side), each
-//     with the lean rule and then the reference's; surfaces too coarse for the domain are then
-//     retried after 1 and 2 rounds of splitting every boundary edge (on the tets as well).
+//     Attempts, each from the input surface, in groups: the reference arc order, then a spanning
+//     tree of the nodes first (the reference order can close a cycle, e.g. the octahedron's
+//     equator, with two still isolated nodes on the same side); surfaces too coarse for the domain
+//     are then retried after 1 and 2 rounds of splitting every boundary edge (on the tets as well).
+//     In a group both rules run; of the maps that pass the exact check the one with fewer tets
+//     wins (the lean rule's on a tie), and the first group with a map ends the search.
 //  4. Charts: boundary triangles flooded between arcs, each matched to its domain face by the side of
 //     its arcs; Tutte's embedding (uniform weights) in the face plane with the chart boundary on the
 //     convex face polygon (arc vertices spaced by arc length), one sparse LDL^T solve per chart. A
