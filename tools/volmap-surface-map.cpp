@@ -45,8 +45,9 @@ int main(int argc, char** argv) {
                "write 6 decimals like VOLMAP's maps (re-checked exactly on the rounded numbers)");
   app.add_flag("--reference-splits", reference_splits,
                "split chords by VOLMAP's reference rule only (every edge joining two arc vertices, after each "
-               "arc; its split counts). Default: split only the chords whose ends lie on one straight side of "
-               "the domain, and fall back to the reference rule where that fails");
+               "arc; its split counts). Default: split only the chords that block an arc or whose ends lie on "
+               "one straight side of the domain; the reference rule runs too and the map whose mesh has "
+               "fewer tets is kept");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
