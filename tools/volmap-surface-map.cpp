@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
       throw volmap::Error(volmap::ErrorKind::BadInput, domain_file, 0, "--domain is for the custom domain only (got '" + domain_name + "')");
     const volmap::Domain domain = polycube ? volmap::polycube_domain(cells, cell_size)
                                   : custom ? volmap::parse_custom_domain(volmap::read_text_file(domain_file, 1 << 16), domain_file)
-                                  : sphere ? volmap::builtin_domain("cube")  // star-shaped source map, projected afterwards
+                                  : sphere ? volmap::builtin_domain("cube")  // unused: map_surface_to_sphere makes its own cube map
                                            : volmap::builtin_domain(domain_name);
     // The refined mesh exists only when the mapper splits edges, but its path is prepared (and
     // checked) now like every output, and dropped when nothing was split.

@@ -156,8 +156,7 @@ bool ArcTracer::mark_sector(int node, int arc, std::vector<std::uint32_t>& stamp
 
 // Dijkstra from node_a's vertex to node_b's vertex over free vertices, leaving node_a inside the
 // sector of arc_a and entering node_b inside the sector of arc_b. Returns no path, with the reason in
-// *why, when the free vertices reachable from the first sector never touch the last one; touched_
-// then holds node_a's vertex and every free vertex it reaches.
+// *why, when the free vertices reachable from the first sector never touch the last one.
 std::vector<VertexHandle> ArcTracer::shortest_path(int node_a, int arc_a, int node_b, int arc_b, std::string* why) {
   const VertexHandle a = g_.node_vertex[node_a], b = g_.node_vertex[node_b];
   ++stamp_;

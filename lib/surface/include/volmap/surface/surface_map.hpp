@@ -63,7 +63,7 @@ enum class ChordSplitRule {
 
 struct SurfaceMapOptions {
   // true: only the reference's chord rule is tried (its split counts, e.g. to compare with VOLMAP's
-  // own surface maps); false: the lean rule first, the reference's where it fails.
+  // own surface maps); false: both rules, the map whose mesh has fewer tets kept (step 3 above).
   bool reference_chord_splits = false;
 };
 
