@@ -384,7 +384,8 @@ std::vector<VertexHandle> ArcTracer::path_through_chords(int node_a, int arc_a, 
   heap.push({Key{0, lower_bound(a.idx())}, static_cast<std::uint32_t>(a.idx())});
   bool reached = false;
   while (!heap.empty()) {
-    const auto [key, state] = heap.top();
+    const Key key = heap.top().first;
+    const std::uint32_t state = heap.top().second;  // a plain local: lambdas below capture it
     heap.pop();
     if (key.first != best[state].first || key.second > best[state].second + lower_bound(state)) continue;  // stale
     if (state == static_cast<std::uint32_t>(b.idx())) {
