@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   bool no_refine = false, no_restart = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false;
+  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false, no_flips = false;
   using volmap_tools::finite_non_negative;
   app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1 << 30));
   app.add_flag("--ffm-rest-first", ffm_rest_first, "cascade: run FFM with the rest-shape reference before the regular tet");
   app.add_flag("--no-kernel-descent", no_kernel_descent, "cascade: skip the kernel-descent stages (exact single-vertex moves driven by the bad tets)");
+  app.add_flag("--no-flips", no_flips, "refinement: skip the flips that remove non-positive tets without a new vertex");
   app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
@@ -134,6 +135,7 @@ int main(int argc, char** argv) {
     opt.ffm_rest_shape_first = ffm_rest_first;
     opt.local_untangle = !no_local;
     opt.kernel_descent = !no_kernel_descent;
+    opt.bad_tet_flips = !no_flips;
     const volmap::VolumeMapResult r =
         volmap_tools::naming_file(in_path, [&] { return volmap::compute_volume_map(input, map, opt); });
 
@@ -196,6 +198,7 @@ int main(int argc, char** argv) {
                        {"growth_budget_escalations", r.growth_budget_escalations},
                        {"cone_search_widenings", r.cone_search_widenings},
                        {"cone_patches", r.cone_patches},
+                       {"bad_tet_flips", r.bad_tet_flips},
                        {"seconds", r.seconds},
                        {"stages", stages}};
       if (!inputs.empty()) j["input_notes"] = inputs.json();

@@ -6,6 +6,8 @@
 
 #include <volmap/predicates.hpp>
 
+#include "polygon_triangulation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,7 +17,7 @@ namespace volmap {
 
 namespace {
 
-constexpr double kInvalid = -std::numeric_limits<double>::infinity();
+constexpr double kInvalid = volume_detail::kNotAdmissible;
 
 // A new tet: exactly positive in the source, and not a fixed non-positive image.
 bool admissible_tet(const TetMesh& mesh, const ChordRules& rules, const FpEnvironmentScope& fp, const std::array<std::uint32_t, 4>& v) {
@@ -52,17 +54,14 @@ std::array<std::uint32_t, 4> ids(const std::array<VertexId, 4>& v) { return {v[0
 
 double shape_floor(double worst_replaced) { return kFixShapeRatio * worst_replaced; }
 
-// Best triangulation of an edge's ring by dynamic programming over sub-polygons i..j: score[i][j] is
-// the best worst-tet shape of an admissible triangulation of i..j (kInvalid when none); the diagonal
-// (i, j) itself must be admissible unless it is a side of the polygon.
+// Best triangulation of an edge's ring (polygon_triangulation.hpp): a triangle scores the worst
+// shape of its two tets (kInvalid when not admissible); a diagonal must be admissible.
 class RingTriangulator {
  public:
   RingTriangulator(const TetMesh& mesh, const ChordRules& rules, TetId t, int a, int b)
       : mesh_(mesh), rules_(rules), va_(mesh.tet_vertex(t, a).idx()), vb_(mesh.tet_vertex(t, b).idx()) {
     for (VertexId v : mesh.edge_ring(t, a, b)) r_.push_back(v.idx());
     n_ = int(r_.size());
-    score_.assign(std::size_t(n_ * n_), kInvalid);
-    split_.assign(std::size_t(n_ * n_), -1);
     neighbours_.resize(std::size_t(n_));
     read_side_neighbours(t, a, b);
     double ring_worst = std::numeric_limits<double>::infinity();
@@ -72,34 +71,11 @@ class RingTriangulator {
 
   // The triangles of the best admissible triangulation, or empty when there is none.
   std::vector<std::array<int, 3>> solve() {
-    for (int len = 1; len < n_; ++len)
-      for (int i = 0; i + len < n_; ++i) fill(i, i + len);
-    std::vector<std::array<int, 3>> out;
-    if (score(0, n_ - 1) == kInvalid) return out;
-    collect(0, n_ - 1, out);
-    return out;
+    return volume_detail::best_polygon_triangulation(
+        n_, [this](int i, int k, int j) { return triangle(i, k, j); }, [this](int i, int j) { return admissible_diagonal(i, j); });
   }
 
  private:
-  double& score(int i, int j) { return score_[std::size_t(i * n_ + j)]; }
-  int& split(int i, int j) { return split_[std::size_t(i * n_ + j)]; }
-
-  void fill(int i, int j) {
-    if (j == i + 1) {
-      score(i, j) = std::numeric_limits<double>::infinity();
-      return;
-    }
-    const bool side = i == 0 && j == n_ - 1;
-    if (!side && !admissible_diagonal(i, j)) return;
-    for (int k = i + 1; k < j; ++k) {
-      const double s = std::min({score(i, k), score(k, j), triangle(i, k, j)});
-      if (s > score(i, j)) {
-        score(i, j) = s;
-        split(i, j) = k;
-      }
-    }
-  }
-
   // The new edge (ring[i], ring[j]) and the faces with va and vb: not blocking, not an edge yet.
   bool admissible_diagonal(int i, int j) {
     const std::uint32_t x = r_[i], y = r_[j];
@@ -153,22 +129,12 @@ class RingTriangulator {
     return worst >= floor_ ? worst : kInvalid;
   }
 
-  void collect(int i, int j, std::vector<std::array<int, 3>>& out) const {
-    if (j <= i + 1) return;
-    const int k = split_[std::size_t(i * n_ + j)];
-    out.push_back({i, k, j});
-    collect(i, k, out);
-    collect(k, j, out);
-  }
-
   const FpEnvironmentScope fp_;
   const TetMesh& mesh_;
   const ChordRules& rules_;
   const std::uint32_t va_, vb_;
   int n_ = 0;
   std::vector<std::uint32_t> r_;
-  std::vector<double> score_;
-  std::vector<int> split_;
   std::vector<std::uint8_t> bad_a_, bad_b_;
   double floor_ = 0;
   std::vector<std::vector<std::uint32_t>> neighbours_;

@@ -9,6 +9,7 @@
 #include <volmap/check/map_check.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/core/time_budget.hpp>
+#include <volmap/volume/bad_tet_flip.hpp>
 #include <volmap/volume/bad_tet_split.hpp>
 #include <volmap/volume/map_stages.hpp>
 
@@ -325,10 +326,25 @@ class VolumeMapper {
     return true;
   }
 
+  // Flips that take non-positive tets out without a new vertex (bad_tet_flip.hpp): every move
+  // lowers the count and touches no other tet, so it runs before each repair attempt; the link
+  // kernel follows when a move freed the vertices around it.
+  void flip_bad_tets() {
+    if (bad_ == 0 || !b1_rounds_ || !options_.bad_tet_flips || budget_->expired()) return;
+    BadTetFlipResult fr;
+    judged_stage("flip-bad-tets", [&] { fr = flip_nonpositive_tets(state_); });
+    if (!result_.stages.back().failure.empty() || fr.edges_removed + fr.faces_flipped == 0) return;
+    result_.bad_tet_flips += fr.edges_removed + fr.faces_flipped;
+    result_.refined = true;
+    link_kernel();
+  }
+
   // Early B1: as soon as a stage leaves few non-positive tets, the cone repair is tried (it leaves a
   // cluster untouched when it fails); not again at an unchanged count after an attempt that stalled.
   void try_early_b1(const std::string& after) {
     if (bad_ == 0 || !b1_rounds_ || bad_ > options_.early_repair_max_bad || bad_ >= early_b1_stalled_at_) return;
+    flip_bad_tets();
+    if (bad_ == 0) return;
     const ConeRepairResult cr = cone_repair_stage("cone-repair-after-" + after, false);
     if (cr.patches == 0 || cr.failed_clusters > 0) early_b1_stalled_at_ = bad_;
   }
@@ -419,6 +435,7 @@ class VolumeMapper {
         continue;
       }
       link_kernel();
+      flip_bad_tets();
       if (bad_ == 0 || budget_->expired()) break;
       // Few tets left: the split (with its own short local FFM) before the long local FFM at fixed
       // connectivity, which rarely finishes where a repair left tets (measured below split_bad_tets).

@@ -5,9 +5,10 @@
 // initial map) → TLC (§6; the whole method with MapMethod::Tlc) → [cascade only] link-kernel
 // relocation (§7 pre-step) → TLC with alpha 1e-8 → local FFM (Newton) on the bad region →
 // global FFM with regular then rest reference shapes (§5), each followed by link-kernel relocation
-// and local FFM → [with refinement: B1 cone repair (§7) tried after every stage that leaves few bad
-// tets, global FFM skipped then] rounds of B1 → link-kernel → local FFM (small-lift TLC, then global
-// FFM, once each when they stall) → validity-preserving quality pass (§5, cascade only). In the
+// and local FFM → [with refinement: bad-tet flips (§8 step 8) and B1 cone repair (§7) tried after
+// every stage that leaves few bad tets, global FFM skipped then] rounds of B1 → link-kernel →
+// bad-tet flips → local FFM (small-lift TLC, then global FFM, once each when they stall) →
+// validity-preserving quality pass (§5, cascade only). In the
 // cascade every link-kernel and local-FFM stage that leaves bad tets is followed by the kernel
 // descent (§10).
 // The stages run on one MapState (map_state.hpp, map_stages.hpp); each is judged by the exact count
@@ -84,6 +85,9 @@ struct VolumeMapOptions {
   // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
   // (cascade only).
   bool kernel_descent = true;
+  // With refinement: flips that remove non-positive tets without a new vertex (bad_tet_flip.hpp)
+  // before each B1 repair attempt.
+  bool bad_tet_flips = true;
   // Cascade without initial_xyz: the starting map (§2). Tutte: Tutte 3D. Radial: the radial start
   // (radial_start.hpp; Tutte 3D when the boundary image has no verified strict kernel point).
   // Fewest: Tutte, and when the boundary image is not convex also the radial start; the one with
@@ -124,6 +128,7 @@ struct VolumeMapResult {
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::size_t chord_edges_removed = 0, chord_faces_flipped = 0;  // B0 flips (no new vertex)
   std::size_t chord_cone_patches = 0;                              // B0 cone patches (one new vertex each)
+  std::size_t bad_tet_flips = 0;                                   // flips that removed non-positive tets (bad_tet_flip.hpp)
   std::size_t growth_budget_escalations = 0;                       // times B1's budget grew (max_growth_last_resort)
   std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
   std::string certified_by;         // stage that produced the certified map
