@@ -6,7 +6,8 @@
 #   <sets>     the output folder of make_sets.sh
 #   <results>  where results go: <results>/<set>/ (volmap-run's results.jsonl, cases/, table.md)
 #   sets       default: thin thin_coarse coarse g1sphere tetmeshes maps surfaces
-#   env        TIME_LIMIT (volmap-map --time-limit, default 60), TIMEOUT (volmap-run --timeout, default 150)
+#   env        TIME_LIMIT (volmap-map --time-limit, default 60), TIMEOUT (volmap-run --timeout, default 150),
+#              JOBS (volmap-run -j, default 1: cases one at a time; 2 on two idle cores = load 2)
 #
 # Per layout set:
 #   1. every sphere map is re-checked by `volmap-surface-map-check <mesh> <map>` WITHOUT options (the
@@ -34,6 +35,7 @@ shift 3
 SETS=("${@:-${ALL_SETS[@]}}")
 TIME_LIMIT=${TIME_LIMIT:-60}
 TIMEOUT=${TIMEOUT:-150}
+JOBS=${JOBS:-1}
 
 sphere_checks() {  # <set dir> <results dir>
   local out=$2/sphere_checks.jsonl map group name mesh plain domain
@@ -146,7 +148,7 @@ for set in "${SETS[@]}"; do
     sphere_checks "$SETS_DIR/$set" "$out"
     [ -s "$out/surface_standalone.jsonl" ] || surface_standalone "$SETS_DIR/$set" "$out"
     "$BIN/volmap-run" "$SETS_DIR/$set" --method map --method-args="--threads 1 --time-limit $TIME_LIMIT" \
-      --timeout "$TIMEOUT" -j1 --resume --out "$out" 2> "$out/progress.log" || true
+      --timeout "$TIMEOUT" -j"$JOBS" --resume --out "$out" 2> "$out/progress.log" || true
     "$BIN/volmap-run" table "$out" > /dev/null
   fi
   kill "$sampler"
