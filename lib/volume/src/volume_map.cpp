@@ -327,8 +327,9 @@ class VolumeMapper {
   }
 
   // Flips that take non-positive tets out without a new vertex (bad_tet_flip.hpp): every move
-  // lowers the count and touches no other tet, so it runs before each repair attempt; the link
-  // kernel follows when a move freed the vertices around it.
+  // lowers the count and touches no other tet. They run before each early repair attempt (the
+  // repair then gets smaller clusters, docs/mapping.md §8 step 8) and after the repair of each B1
+  // round; the link kernel follows when a move freed the vertices around it.
   void flip_bad_tets() {
     if (bad_ == 0 || !b1_rounds_ || !options_.bad_tet_flips || budget_->expired()) return;
     BadTetFlipResult fr;
