@@ -99,12 +99,12 @@ bool remove_an_edge(TetMesh& mesh, const TwoGeometries& g, TetId t, int max_ring
 // Flips one interior face of t 2-3 when the three new tets are positive in both geometries and no
 // flatter than kFixShapeRatio times the worse of the two they replace.
 bool flip_a_face(TetMesh& mesh, const TwoGeometries& g, TetId t, BadTetFlipResult& r) {
+  const auto tv = ids(mesh.tet_vertices(t));
   for (int apex = 0; apex < 4; ++apex) {
     const HalfFaceId h(t, apex);
     const HalfFaceId o = mesh.half_face_opposite(h);
     if (!o.is_valid()) continue;
     const std::uint32_t e = mesh.half_face_apex(o).idx();
-    const auto tv = ids(mesh.tet_vertices(t));
     const double floor = kFixShapeRatio * std::min(g.source_shape(tv), g.source_shape(ids(mesh.tet_vertices(o.tet()))));
     bool admissible = true;
     for (int j = 0; j < 4 && admissible; ++j) {  // flip_2_3's children: t with face vertex j replaced by e
@@ -123,24 +123,28 @@ bool flip_a_face(TetMesh& mesh, const TwoGeometries& g, TetId t, BadTetFlipResul
 
 }  // namespace
 
+// One exact scan finds the non-positive tets. A move puts only positive tets in place (in the
+// slots of the tets it removes, or new ones) and leaves every other tet in its slot, so no tet turns
+// non-positive and those slots are all the passes need to visit.
 BadTetFlipResult flip_nonpositive_tets(MapState& state, int max_passes, int max_ring) {
   state.require_compact();
-  BadTetFlipResult r;
-  r.tets_before = state.source.num_tets();
-  r.bad_before = state.count_nonpositive();
   TetMesh& mesh = state.source;
+  BadTetFlipResult r;
+  r.tets_before = mesh.num_tets();
+  std::vector<std::uint32_t> bad = nonpositive_tets(state.target_xyz(), mesh.tet_vertex_array());
+  r.bad_before = bad.size();
   const TwoGeometries g(state);
+  const auto still_bad = [&](std::uint32_t t) { return mesh.tet_is_live(TetId(t)) && !g.target_positive(TetId(t)); };
   for (int pass = 0; pass < max_passes; ++pass) {
     std::size_t moves = 0;
-    for (std::uint32_t t = 0; t < mesh.num_tet_slots(); ++t) {
-      if (!mesh.tet_is_live(TetId(t)) || g.target_positive(TetId(t))) continue;
-      if (remove_an_edge(mesh, g, TetId(t), max_ring, r) || flip_a_face(mesh, g, TetId(t), r)) ++moves;
-    }
+    for (std::uint32_t t : bad)
+      if (still_bad(t) && (remove_an_edge(mesh, g, TetId(t), max_ring, r) || flip_a_face(mesh, g, TetId(t), r))) ++moves;
+    bad.erase(std::remove_if(bad.begin(), bad.end(), [&](std::uint32_t t) { return !still_bad(t); }), bad.end());
     if (moves == 0) break;
   }
+  r.bad_after = bad.size();
   if (mesh.num_free_tet_slots() > 0) mesh.compact();
   r.tets_after = mesh.num_tets();
-  r.bad_after = state.count_nonpositive();
   return r;
 }
 
