@@ -2,9 +2,10 @@
 // otherwise. Generated cases: a Kuhn cube and a cube coned from a corner (no interior vertex) whose
 // boundary is projected onto a regular tetrahedron (their blocking chord edges join two points of one
 // facet of the image), a bipyramid whose middle face lies in a facet of the target, cones over
-// single vertex stars. Oracles independent of ChordRules: membership in the planes of all
-// boundary image triangles, exact positivity (check_invariants), the oriented boundary before and
-// after, and the old split-only B0 (split_chords) as the growth to beat; the mapper must certify.
+// single vertex stars, one cone region over a convex box with no interior vertex. Oracles
+// independent of ChordRules: membership in the planes of all boundary image triangles, exact
+// positivity (check_invariants), the oriented boundary before and after, and the old split-only B0
+// (split_chords) as the growth to beat; the mapper must certify.
 #include <doctest/doctest.h>
 
 #include <volmap/core/boundary_faces.hpp>
@@ -257,6 +258,37 @@ TEST_CASE("B0 cone patch: a cube coned from a corner (no interior vertex) onto a
   CHECK(r.certified);
   CHECK(r.chord_cone_patches == b0.cone_patches);
   CHECK(r.source.num_tets() < old_b0.tets_after);
+}
+
+TEST_CASE("B0 cone region: on a convex box with every vertex on the boundary, one region takes the stars of all 98 vertices") {
+  // A Kuhn grid of 6×6×1 cells stretched to a cube: 216 tets, 98 vertices, none inside. With every
+  // vertex carrying a costly pending chord, the region grows star by star until a limit or the shape
+  // rule stops it; the box is convex, so the default limits must let one cone replace all of it (192
+  // tets, one per boundary face). The limits of an earlier B0 (400 tets, 24 stars) stop after 66
+  // vertices: on coarse meshes that left many small hubs whose couplings stalled the repair
+  // (docs/mapping.md §4).
+  volmap::TetMeshData box = volmap::generate_kuhn_grid(6, 6, 1);
+  for (std::size_t v = 0; v < box.num_vertices(); ++v) box.xyz[3 * v + 2] *= 6;  // a cube of 6×6×1 cells, 1×1×6 each
+  REQUIRE(box.num_tets() == 216);
+  auto region_vertices = [&](const volmap::ConeRegionLimits& limits, std::size_t* tets) {
+    volmap::TetMesh mesh(box);
+    const auto boundary = mesh_test::oriented_boundary(mesh);
+    const volmap::PendingChordsAt chords = [](std::uint32_t v) { return std::vector<std::pair<std::size_t, long long>>{{v, 1000}}; };
+    long long added = 0;
+    std::vector<std::uint32_t> touched;
+    REQUIRE(volmap::cone_region(mesh, 0, chords, limits, &added, &touched));
+    CHECK(mesh.check_invariants(true).ok);
+    CHECK(mesh_test::oriented_boundary(mesh) == boundary);
+    *tets = mesh.num_tets();
+    std::sort(touched.begin(), touched.end());
+    return std::size_t(std::unique(touched.begin(), touched.end()) - touched.begin());
+  };
+  std::size_t tets_default = 0, tets_small = 0;
+  CHECK(region_vertices(volmap::ConeRegionLimits{}, &tets_default) == box.num_vertices());
+  CHECK(tets_default == 192);
+  const std::size_t small = region_vertices(volmap::ConeRegionLimits{400, 24}, &tets_small);
+  MESSAGE("box: one region takes " << small << " of 98 vertices with the limits 400 tets / 24 stars");
+  CHECK(small < box.num_vertices());
 }
 
 TEST_CASE("B0: a fixed inverted tet under a dent — one 2-3 flip towards the free vertex across it, then a certified map") {

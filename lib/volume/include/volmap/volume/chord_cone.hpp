@@ -30,8 +30,8 @@ std::size_t boundary_faces_at(const TetMesh& mesh, std::uint32_t v);
 bool cone_vertex_star(TetMesh& mesh, std::uint32_t v);
 
 struct ConeRegionLimits {
-  std::size_t max_tets = 400;  // |R|
-  int max_steps = 24;          // stars tried after the seed's (accepted or not)
+  std::size_t max_tets = 1200;  // |R|
+  int max_steps = 64;           // stars tried after the seed's (accepted or not)
 };
 
 // What a patch must beat: chords(v) lists the pending chords at vertex v as (chord id, what fixing
