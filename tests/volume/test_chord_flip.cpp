@@ -270,7 +270,10 @@ TEST_CASE("B0 cone region: on a convex box with every vertex on the boundary, on
   volmap::TetMeshData box = volmap::generate_kuhn_grid(6, 6, 1);
   for (std::size_t v = 0; v < box.num_vertices(); ++v) box.xyz[3 * v + 2] *= 6;  // a cube of 6×6×1 cells, 1×1×6 each
   REQUIRE(box.num_tets() == 216);
-  auto region_vertices = [&](const volmap::ConeRegionLimits& limits, std::size_t* tets) {
+  struct Patch {
+    std::size_t vertices = 0, tets = 0;  // R's vertices; the mesh's tets after the patch
+  };
+  auto cone_from_vertex_0 = [&](const volmap::ConeRegionLimits& limits) {
     volmap::TetMesh mesh(box);
     const auto boundary = mesh_test::oriented_boundary(mesh);
     const volmap::PendingChordsAt chords = [](std::uint32_t v) { return std::vector<std::pair<std::size_t, long long>>{{v, 1000}}; };
@@ -279,16 +282,15 @@ TEST_CASE("B0 cone region: on a convex box with every vertex on the boundary, on
     REQUIRE(volmap::cone_region(mesh, 0, chords, limits, &added, &touched));
     CHECK(mesh.check_invariants(true).ok);
     CHECK(mesh_test::oriented_boundary(mesh) == boundary);
-    *tets = mesh.num_tets();
     std::sort(touched.begin(), touched.end());
-    return std::size_t(std::unique(touched.begin(), touched.end()) - touched.begin());
+    return Patch{std::size_t(std::unique(touched.begin(), touched.end()) - touched.begin()), mesh.num_tets()};
   };
-  std::size_t tets_default = 0, tets_small = 0;
-  CHECK(region_vertices(volmap::ConeRegionLimits{}, &tets_default) == box.num_vertices());
-  CHECK(tets_default == 192);
-  const std::size_t small = region_vertices(volmap::ConeRegionLimits{400, 24}, &tets_small);
-  MESSAGE("box: one region takes " << small << " of 98 vertices with the limits 400 tets / 24 stars");
-  CHECK(small < box.num_vertices());
+  const Patch wide = cone_from_vertex_0(volmap::ConeRegionLimits{});
+  CHECK(wide.vertices == box.num_vertices());
+  CHECK(wide.tets == 192);
+  const Patch small = cone_from_vertex_0(volmap::ConeRegionLimits{400, 24});
+  MESSAGE("box: one region takes " << small.vertices << " of 98 vertices with the limits 400 tets / 24 stars");
+  CHECK(small.vertices < box.num_vertices());
 }
 
 TEST_CASE("B0: a fixed inverted tet under a dent — one 2-3 flip towards the free vertex across it, then a certified map") {
