@@ -7,7 +7,9 @@
 #   <results>  where results go: <results>/<set>/ (volmap-run's results.jsonl, cases/, table.md)
 #   sets       default: thin thin_coarse coarse g1sphere tetmeshes maps surfaces
 #   env        TIME_LIMIT (volmap-map --time-limit, default 60), TIMEOUT (volmap-run --timeout, default 150),
-#              JOBS (volmap-run -j, default 1: cases one at a time; 2 on two idle cores = load 2)
+#              JOBS (volmap-run -j, default 1: cases one at a time; 2 on two idle cores = load 2),
+#              MAP_ARGS (more volmap-map options for every case, e.g. "--no-refine" for the fixed-
+#              connectivity tables of issue 18; default none)
 #
 # Per layout set:
 #   1. every sphere map is re-checked by `volmap-surface-map-check <mesh> <map>` WITHOUT options (the
@@ -36,6 +38,7 @@ SETS=("${@:-${ALL_SETS[@]}}")
 TIME_LIMIT=${TIME_LIMIT:-60}
 TIMEOUT=${TIMEOUT:-150}
 JOBS=${JOBS:-1}
+MAP_ARGS=${MAP_ARGS:-}
 
 sphere_checks() {  # <set dir> <results dir>
   local out=$2/sphere_checks.jsonl map group name mesh plain domain
@@ -102,7 +105,7 @@ run_maps() {  # <results dir>
       boundary=- initial=(--initial "$parameter")
       if [[ $parameter == *.txt ]]; then boundary=$parameter initial=(); fi
       /usr/bin/time -f '%e %U %S' -o "$work/time.txt" timeout "$TIMEOUT" "$BIN/volmap-map" "$object" "$boundary" "$work/out.mesh" \
-        "${initial[@]}" --refined-input "$work/refined.mesh" --threads 1 --time-limit "$TIME_LIMIT" --json \
+        "${initial[@]}" --refined-input "$work/refined.mesh" --threads 1 --time-limit "$TIME_LIMIT" $MAP_ARGS --json \
         > "$work/map.json" 2> "$work/map.err" || rc=$?
       if [ -f "$work/out.mesh" ]; then
         local src=$object
@@ -147,7 +150,7 @@ for set in "${SETS[@]}"; do
   else
     sphere_checks "$SETS_DIR/$set" "$out"
     [ -s "$out/surface_standalone.jsonl" ] || surface_standalone "$SETS_DIR/$set" "$out"
-    "$BIN/volmap-run" "$SETS_DIR/$set" --method map --method-args="--threads 1 --time-limit $TIME_LIMIT" \
+    "$BIN/volmap-run" "$SETS_DIR/$set" --method map --method-args="--threads 1 --time-limit $TIME_LIMIT${MAP_ARGS:+ $MAP_ARGS}" \
       --timeout "$TIMEOUT" -j"$JOBS" --resume --out "$out" 2> "$out/progress.log" || true
     "$BIN/volmap-run" table "$out" > /dev/null
   fi
