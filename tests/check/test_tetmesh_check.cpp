@@ -65,8 +65,7 @@ bool same_arrays(const TetMeshData& a, const TetMeshData& b) {
 }
 
 void check_round_trip(const TetMeshData& mesh, const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("volmap_test_check_rt_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = volmap_test::scratch_dir("check_rt");
   const std::string vtu = (dir / (name + ".vtu")).string(), back = (dir / (name + ".mesh")).string();
   volmap::write_vtu(vtu, mesh);
   const TetMeshData from_vtu = volmap::read_vtu(vtu);

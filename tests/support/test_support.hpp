@@ -1,12 +1,15 @@
-// Helpers shared by tests: where the real data lives (../shared/data, read in place, never copied)
-// and where the built tools are. Tests that need data call data_file() and skip when it is empty.
+// Helpers shared by tests: where the real data lives (../shared/data, read in place, never copied),
+// where the built tools are, and per-process scratch folders (removed when the test process exits
+// normally). Tests that need data call data_file() and skip when it is empty.
 #pragma once
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace volmap_test {
 
@@ -34,9 +37,47 @@ inline std::filesystem::path tool(const std::string& name) {
   return std::filesystem::path(env && *env ? env : VOLMAP_BIN_DIR) / name;
 }
 
-// A per-process scratch folder for a test file's generated inputs: <tmp>/volmap_test_<tag>_<pid>.
+// The scratch folders of this process, removed when it exits normally: every ctest run used to
+// leave its folders behind (1.1 GB in /tmp after a few days of runs). A crash skips the removal, so
+// the files of a crashing test stay for a look; VOLMAP_KEEP_TEST_FILES=1 keeps them always.
+class ScratchFolders {
+ public:
+  static ScratchFolders& instance() {
+    static ScratchFolders folders;
+    return folders;
+  }
+  void add(const std::filesystem::path& dir) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(dir);
+  }
+  ~ScratchFolders() {
+    const char* keep = std::getenv("VOLMAP_KEEP_TEST_FILES");
+    if (keep && *keep && std::string(keep) != "0") return;
+    for (const auto& dir : dirs_) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  }
+
+ private:
+  ScratchFolders() = default;
+  std::mutex mutex_;
+  std::vector<std::filesystem::path> dirs_;
+};
+
+// A per-process scratch folder for a test file's generated inputs: <tmp>/volmap_test_<tag>_<pid>,
+// created when missing (its content is kept between calls in one process) and removed at exit.
 inline std::filesystem::path scratch_dir(const std::string& tag) {
   auto d = std::filesystem::temp_directory_path() / ("volmap_test_" + tag + "_" + std::to_string(::getpid()));
+  if (!std::filesystem::exists(d)) ScratchFolders::instance().add(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// The same folder emptied first.
+inline std::filesystem::path fresh_scratch_dir(const std::string& tag) {
+  const auto d = scratch_dir(tag);
+  std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
 }

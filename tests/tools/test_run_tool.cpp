@@ -17,12 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("volmap_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return volmap_test::fresh_scratch_dir(name); }
 
 // log.csv: "<path>/<mesh>_<dom>_tutte; #tets; #inverted; ..." -> {"mesh_dom": inverted}
 std::map<std::string, long long> log_inverted(const fs::path& log) {

@@ -26,11 +26,7 @@ struct Run {
   std::string out, err;
 };
 
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("volmap_test_tmcheck_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return volmap_test::scratch_dir("tmcheck"); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);

@@ -30,11 +30,7 @@
 
 namespace {
 
-std::filesystem::path temp_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("volmap_test_map_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path temp_dir(const std::string& name) { return volmap_test::scratch_dir("map_" + name); }
 
 }  // namespace
 
