@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   bool no_refine = false, no_restart = false, json = false, no_quality = false;
   int threads = 0, ffm_inner = 0;
   double tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
-  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false, no_flips = false;
+  bool ffm_rest_first = false, no_local = false, no_kernel_descent = false, no_flips = false, no_local_rounds = false;
   using volmap_tools::finite_non_negative;
   app.add_option("input", in_path, "source tet mesh (.mesh/.vtk/.vtu/.msh/.ovm, a valid VOLMAP input)")->required();
   app.add_option("map", map_path, "boundary map `vid x y z` (0-based), or - to take it from --initial")->required();
@@ -80,6 +80,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-kernel-descent", no_kernel_descent, "cascade: skip the kernel-descent stages (exact single-vertex moves driven by the bad tets)");
   app.add_flag("--no-flips", no_flips, "refinement: skip the flips that remove non-positive tets without a new vertex");
   app.add_flag("--no-local", no_local, "cascade: skip the local FFM (Newton) stages on the bad region");
+  app.add_flag("--no-local-rounds", no_local_rounds, "fixed connectivity: with few bad tets left, run the global FFM stages instead of rounds of small-lift TLC and local FFM");
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
@@ -134,6 +135,7 @@ int main(int argc, char** argv) {
     opt.ffm_max_lbfgs_iterations = ffm_inner;
     opt.ffm_rest_shape_first = ffm_rest_first;
     opt.local_untangle = !no_local;
+    if (no_local_rounds) opt.local_rounds_max_bad = 0;
     opt.kernel_descent = !no_kernel_descent;
     opt.bad_tet_flips = !no_flips;
     const volmap::VolumeMapResult r =

@@ -253,6 +253,49 @@ TEST_CASE("Floater–Pham-Trong 7-vertex Tutte counterexample: Tutte inverts, th
   CHECK(r.source.num_tets() == 10);
 }
 
+TEST_CASE("fixed connectivity, few bad tets left: rounds of small-lift TLC and local FFM instead of global FFM") {
+  // GalaxyMaps' rocker arm from its own initial map (8,682 tets): at fixed connectivity the
+  // untangling phase leaves 2 non-positive tets and no local certificate. Global FFM restarts from
+  // ε = 1 and was undone in every one of 290 calls on G1 and the wide sets (docs/mapping.md §10);
+  // with few tets left the local rounds run instead, and the global stages only on request.
+  VOLMAP_REQUIRE_DATA(obj, "maps/galaxymaps/cub_rockerarm291_object.vtk");
+  VOLMAP_REQUIRE_DATA(par, "maps/galaxymaps/cub_rockerarm291_parameter.vtk");
+  const auto src = volmap::read_vtk(obj.string());
+  const auto img = volmap::read_vtk(par.string());
+  std::vector<std::uint8_t> bnd(src.num_vertices(), 0);
+  for (auto v : volmap::boundary_vertex_ids(src)) bnd[v] = 1;
+  const auto map = map_test::boundary_map_of(bnd, img.xyz);
+  auto stages_named = [](const volmap::VolumeMapResult& r, const std::string& name) {
+    return std::count_if(r.stages.begin(), r.stages.end(), [&](const volmap::VolumeMapStage& s) { return s.name == name; });
+  };
+  for (const std::size_t local_rounds_max_bad : {std::size_t(200), std::size_t(0)}) {
+    volmap::VolumeMapOptions opt;
+    opt.allow_refinement = false;
+    opt.max_threads = 1;
+    opt.time_limit_seconds = 5;
+    opt.quality_pass = false;
+    opt.initial_xyz = img.xyz;
+    opt.local_rounds_max_bad = local_rounds_max_bad;
+    const auto r = volmap::compute_volume_map(src, map, opt);
+    INFO("local_rounds_max_bad " << local_rounds_max_bad << ": certified " << r.certified << ", " << r.nonpositive << " left");
+    CHECK(r.certified == (volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0));  // never a false success
+    CHECK(r.infeasibility.empty());
+    // The untangling phase ends with its local FFM stage; what follows is the phase under test.
+    const auto first_local = std::find_if(r.stages.begin(), r.stages.end(), [](const auto& s) { return s.name == "ffm-local"; });
+    REQUIRE(first_local != r.stages.end());
+    REQUIRE(first_local->nonpositive_after > 0);
+    REQUIRE(first_local->nonpositive_after <= 200);
+    if (local_rounds_max_bad > 0) {
+      CHECK(stages_named(r, "ffm-regular") == 0);
+      CHECK(stages_named(r, "ffm-rest") == 0);
+      CHECK(stages_named(r, "tlc-small-alpha") >= 2);  // the untangling phase's and at least one round's
+      CHECK(stages_named(r, "ffm-local") >= 2);
+    } else {
+      CHECK(stages_named(r, "ffm-regular") == 1);
+    }
+  }
+}
+
 TEST_CASE("TLC example cube (custom text format): B0 + untangling certifies the refined pair") {
   VOLMAP_REQUIRE_DATA(p, "maps/tlc/input");
   std::ifstream in(p);

@@ -73,7 +73,7 @@ class VolumeMapper {
     // An exact local certificate at fixed connectivity (§10): no untangler can succeed.
     if (!options_.allow_refinement && !result_.infeasibility.empty()) return finish(false);
     if (bad_ > 0 && !budget_->expired()) untangle_from_tlc();
-    if (bad_ > 0 && cascade() && !b1_rounds_) global_ffm();
+    if (bad_ > 0 && cascade() && !b1_rounds_) fixed_connectivity_phase();
     if (bad_ > 0 && b1_rounds_) repair_rounds(plan_);
     if (bad_ > 0) use_time_beyond_plan();
     if (bad_ == 0 && options_.quality_pass && options_.method == MapMethod::Ffm && !budget_->expired()) quality();
@@ -420,6 +420,28 @@ class VolumeMapper {
     }
   }
 
+  // Without refinement, after the untangling phase: with few non-positive tets left, local rounds;
+  // else the global FFM stages. Global FFM restarts from ε = 1, which smooths a nearly valid map
+  // away and is then undone by the judge (docs/mapping.md §10, "Local rounds").
+  void fixed_connectivity_phase() {
+    if (options_.local_rounds_max_bad > 0 && bad_ <= options_.local_rounds_max_bad)
+      local_rounds();
+    else
+      global_ffm();
+  }
+
+  // Rounds of small-lift TLC (it moves the whole map, also at an unchanged count, so the local
+  // stages start from another state) and local FFM with a larger share, until two rounds in a row
+  // lower nothing or the time is out.
+  void local_rounds() {
+    for (int idle = 0; bad_ > 0 && idle < 2 && !budget_->expired();) {
+      const std::size_t before = bad_;
+      small_lift_tlc("tlc-small-alpha", 0.3);
+      local_ffm(0.5);
+      idle = bad_ < before ? 0 : idle + 1;
+    }
+  }
+
   // §7 B1 rounds over the whole time limit: repair → link kernel → local FFM on the repaired mesh
   // (the rest of the map is valid and stays frozen) → repair again. When the repair and the local
   // solve both stall: one small-lift TLC over the whole mesh (its moves at an equal count change the
@@ -455,7 +477,7 @@ class VolumeMapper {
   }
 
   // A limit beyond the planning horizon changes none of the planned stages; what is left after them
-  // goes to more judged rounds of the last phase (B1 rounds, or the global FFM stages without B1),
+  // goes to more judged rounds of the last phase (B1 rounds, or the fixed-connectivity phase without B1),
   // so more time never ends with more non-positive tets.
   void use_time_beyond_plan() {
     if (!attempt_.limited() || plan_.limit_seconds() >= attempt_.limit_seconds() || attempt_.expired()) return;
@@ -463,7 +485,7 @@ class VolumeMapper {
       repair_rounds(attempt_);
     } else if (cascade()) {
       budget_ = &attempt_;
-      global_ffm();
+      fixed_connectivity_phase();
     }
   }
 

@@ -77,6 +77,10 @@ struct VolumeMapOptions {
   // each time its double count of non-positive tets reaches a new low within 1..this (0 = never).
   // Larger is faster and leaves a rougher map for the quality pass (docs/mapping.md §6).
   std::size_t tlc_finish_max_bad = 50;
+  // Without refinement: when the cascade's untangling phase leaves at most this many non-positive
+  // tets, the global FFM stages give way to local rounds (small-lift TLC, then local FFM on what is
+  // left, repeated while they make progress; docs/mapping.md §10). 0 = always the global stages.
+  std::size_t local_rounds_max_bad = 200;
   int ffm_max_lbfgs_iterations = 0;    // L-BFGS iterations per FFM outer step; 0 = FfmOptions default
   bool ffm_rest_shape_first = false;   // FFM stages: rest-shape reference before the regular tet
   // Local FFM (Newton, rest of the mesh frozen) on the region of the remaining non-positive tets,
