@@ -215,6 +215,7 @@ int main(int argc, char** argv) {
           nlohmann::json certificate = {{"kind", volmap::infeasibility_kind_name(c.kind)}, {"simplex", c.simplex}, {"tet", c.tet},
                                         {"constraint_tets", c.constraint_tets}, {"multipliers", multipliers}, {"text", volmap::describe(c)}};
           if (!c.boundary_face.empty()) certificate["boundary_face"] = c.boundary_face;
+          if (!c.ring.empty()) certificate["ring"] = c.ring;
           certificates.push_back(std::move(certificate));
         }
         j["infeasible"] = {{"scope", "this-connectivity"},

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -207,4 +208,95 @@ TEST_CASE("volmap-map --no-refine --json: the folded bipyramid is reported infea
   CHECK(c["constraint_tets"].size() == c["multipliers"].size());
   CHECK(c["constraint_tets"].size() >= 2);
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// A pyramid over a flat quad floor a q b d with apex t, and one free vertex w inside the tet
+// (a, b, c, q) of the source; c is a floor vertex inside the triangle a q b. Around the floor edge ab
+// the fan runs c → w → q → t → d. In the source q is lifted (the tet a b c q has volume); in the
+// target q lies on the floor, on c's side of ab: the tets from c through w to q would have to turn a
+// full circle about ab. Ids a=0 b=1 c=2 d=3 q=4 t=5 w=6; each tet ordered VOLMAP-positive in the source.
+struct FlatFloorFan {
+  volmap::TetMeshData mesh;
+  std::vector<std::uint8_t> locked = {1, 1, 1, 1, 1, 1, 0};
+  std::vector<double> target;
+  FlatFloorFan() {
+    mesh.xyz = {0, 0, 0, 2, 0, 0, 1, -1, 0, 1, 1, 0, 1, -1.5, 1, 1, 0, 2, 1, -0.6, 0.25};
+    mesh.tets = {0, 1, 2, 6, 0, 1, 4, 6, 0, 2, 4, 6, 1, 2, 4, 6, 0, 1, 4, 5, 0, 1, 5, 3};
+    for (std::size_t t = 0; t < mesh.tets.size(); t += 4) {
+      const double* x = mesh.xyz.data();
+      if (volmap::orient3d(x + 3 * mesh.tets[t], x + 3 * mesh.tets[t + 1], x + 3 * mesh.tets[t + 2], x + 3 * mesh.tets[t + 3]) < 0)
+        std::swap(mesh.tets[t], mesh.tets[t + 1]);
+    }
+    target = mesh.xyz;
+    target[3 * 4 + 1] = -2, target[3 * 4 + 2] = 0;  // q on the floor, beyond c
+    target[3 * 5 + 1] = -0.5;                       // t above the quad's middle (a convex pyramid)
+  }
+};
+
+// Independent oracle (rationals): p and q in one open half-plane of the line ab, i.e. the normals
+// n_p = (b − a) × (p − a) and n_q = (b − a) × (q − a) are parallel (coplanar) with n_p · n_q > 0.
+bool oracle_same_half_plane(const std::vector<double>& X, std::uint32_t a, std::uint32_t b, std::uint32_t p, std::uint32_t q) {
+  auto vec = [&](std::uint32_t from, std::uint32_t to) {
+    return std::array<Rational, 3>{Rational(X[3 * to]) - X[3 * from], Rational(X[3 * to + 1]) - X[3 * from + 1],
+                                   Rational(X[3 * to + 2]) - X[3 * from + 2]};
+  };
+  auto cross = [](const std::array<Rational, 3>& u, const std::array<Rational, 3>& v) {
+    return std::array<Rational, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  };
+  const auto u = vec(a, b), np = cross(u, vec(a, p)), nq = cross(u, vec(a, q)), both = cross(np, nq);
+  const Rational dot = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
+  return both[0] == 0 && both[1] == 0 && both[2] == 0 && dot > 0;
+}
+
+}  // namespace
+
+TEST_CASE("an edge fan whose fixed ring vertices share a half-plane of the edge's line: an exact edge-fan-wraps certificate") {
+  const FlatFloorFan f;
+  const volmap::TetMesh mesh(f.mesh);
+  REQUIRE(volmap::count_nonpositive(f.mesh.xyz, f.mesh.tets) == 0);  // a valid source
+  const auto cs = certificates_of(f.mesh, f.locked, f.target);
+  const auto it = std::find_if(cs.begin(), cs.end(), [](const auto& c) { return c.kind == InfeasibilityKind::EdgeFanWraps; });
+  REQUIRE(it != cs.end());
+  const volmap::InfeasibilityCertificate& c = *it;
+  INFO(volmap::describe(c));
+  // The edge a b, the ring c (or q) .. w .. q (or c): its ends fixed and in one half-plane (oracle),
+  // the free vertex between them, one constraint tet per step.
+  CHECK(std::set<std::uint32_t>(c.simplex.begin(), c.simplex.end()) == std::set<std::uint32_t>{0, 1});
+  REQUIRE(c.ring.size() == 3);
+  CHECK(std::set<std::uint32_t>{c.ring.front(), c.ring.back()} == std::set<std::uint32_t>{2, 4});
+  CHECK(c.ring[1] == 6);
+  CHECK(c.constraint_tets.size() == 2);
+  CHECK(oracle_same_half_plane(f.target, c.simplex[0], c.simplex[1], c.ring.front(), c.ring.back()));
+  CHECK(volmap::verify_certificate(mesh, f.locked, f.target, c));
+  // The same claim is refused where it does not hold: q lifted off the floor (not coplanar), q moved
+  // to d's side of ab, the ring's middle vertex locked, a ring that skips a step of the fan.
+  std::vector<double> lifted = f.target;
+  lifted[3 * 4 + 2] = 0.25;
+  CHECK_FALSE(oracle_same_half_plane(lifted, c.simplex[0], c.simplex[1], c.ring.front(), c.ring.back()));
+  CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, lifted, c));
+  CHECK_FALSE(has_kind(certificates_of(f.mesh, f.locked, lifted), InfeasibilityKind::EdgeFanWraps));
+  std::vector<double> other_side = f.target;
+  other_side[3 * 4 + 1] = 0.5;  // on the floor, across ab from c
+  CHECK_FALSE(oracle_same_half_plane(other_side, c.simplex[0], c.simplex[1], c.ring.front(), c.ring.back()));
+  CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, other_side, c));
+  std::vector<std::uint8_t> all_locked(7, 1);
+  CHECK_FALSE(volmap::verify_certificate(mesh, all_locked, f.target, c));
+  volmap::InfeasibilityCertificate skipping = c;
+  skipping.ring = {c.ring.front(), c.ring.back()};
+  skipping.constraint_tets = {c.constraint_tets.front()};
+  CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, f.target, skipping));
+  // The mapper at fixed connectivity stops with the certificate (no map is claimed).
+  volmap::BoundaryMap map;
+  for (std::uint32_t v = 0; v < 6; ++v) {
+    map.vids.push_back(v);
+    map.xyz.insert(map.xyz.end(), &f.target[3 * v], &f.target[3 * v] + 3);
+  }
+  volmap::VolumeMapOptions o;
+  o.allow_refinement = false;
+  o.time_limit_seconds = 5;
+  const auto r = volmap::compute_volume_map(f.mesh, map, o);
+  CHECK_FALSE(r.certified);
+  CHECK(has_kind(r.infeasibility, InfeasibilityKind::EdgeFanWraps));
 }

@@ -118,6 +118,60 @@ bool is_boundary_face(const TetMesh& mesh, std::array<std::uint32_t, 3> abc) {
   return false;
 }
 
+// The tets around edge (a, b) in rotation order into `fan`: each as (tet, w, w') with
+// orient3d(a, b, w, w') > 0 in the source (the source tets are positive), consecutive entries sharing
+// w' = next w. An edge of ∂M gives an open chain from one boundary face to the other, an interior
+// edge a cycle (starting anywhere). False when the tets form no such chain or cycle. `unordered` is
+// scratch space (reused between calls: no allocation per edge once it has grown).
+struct FanTet {
+  std::uint32_t tet, w, w_next;
+};
+bool ordered_fan(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const std::vector<TetId>& star,
+                 std::vector<FanTet>& unordered, std::vector<FanTet>& fan) {
+  unordered.clear();
+  fan.clear();
+  const std::vector<double>& S = mesh.positions();
+  for (TetId t : star) {
+    std::uint32_t o[2], n = 0;
+    for (VertexId v : mesh.tet_vertices(t))
+      if (v.idx() != a && v.idx() != b && n < 2) o[n++] = v.idx();
+    if (n != 2) return false;
+    if (orient3d(at(S, a), at(S, b), at(S, o[0]), at(S, o[1])) < 0) std::swap(o[0], o[1]);
+    unordered.push_back({t.idx(), o[0], o[1]});
+  }
+  if (unordered.empty()) return false;
+  // Start at the entry whose w is no entry's w_next (chain), else at the first (cycle); then follow
+  // w_next, taking each entry once (a fan has a few tens of tets: quadratic is fine).
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < unordered.size(); ++i)
+    if (std::none_of(unordered.begin(), unordered.end(), [&](const FanTet& f) { return f.w_next == unordered[i].w; })) start = i;
+  std::swap(unordered[0], unordered[start]);
+  fan.push_back(unordered[0]);
+  for (std::size_t filled = 1; filled < unordered.size(); ++filled) {
+    std::size_t k = filled;
+    while (k < unordered.size() && unordered[k].w != fan.back().w_next) ++k;
+    if (k == unordered.size()) return false;
+    std::swap(unordered[filled], unordered[k]);
+    fan.push_back(unordered[filled]);
+  }
+  return true;
+}
+
+// p and q (not on the line ab) lie in the same open half-plane bounded by the line ab: coplanar with
+// it, and on the same side of it in a coordinate projection that keeps (a, b, p) non-degenerate
+// (such a projection is injective on their common plane).
+bool same_half_plane(const double* a, const double* b, const double* p, const double* q) {
+  if (orient3d(a, b, p, q) != 0) return false;
+  static constexpr int kAxes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (const auto& ax : kAxes) {
+    const double a2[2] = {a[ax[0]], a[ax[1]]}, b2[2] = {b[ax[0]], b[ax[1]]};
+    const double p2[2] = {p[ax[0]], p[ax[1]]}, q2[2] = {q[ax[0]], q[ax[1]]};
+    const int sp = orient2d(a2, b2, p2);
+    if (sp != 0) return orient2d(a2, b2, q2) == sp;
+  }
+  return false;  // (a, b, p) degenerate in every projection: collinear
+}
+
 class CertificateSearch {
  public:
   CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
@@ -130,6 +184,7 @@ class CertificateSearch {
     degenerate_faces();
     chords_touching_boundary();
     empty_link_kernels();
+    wrapping_edge_fans();
     return std::move(found_);
   }
 
@@ -155,7 +210,7 @@ class CertificateSearch {
     for (std::uint32_t t = 0; t < mesh_.num_tet_slots() && !full(); ++t) {
       const std::uint32_t* v = &tv[4 * std::size_t(t)];
       if (all_locked(v, 4) && orient3d(at(X_, v[0]), at(X_, v[1]), at(X_, v[2]), at(X_, v[3])) <= 0)
-        keep({InfeasibilityKind::FixedTet, {v[0], v[1], v[2], v[3]}, t, {}, {}, {}});
+        keep({InfeasibilityKind::FixedTet, {v[0], v[1], v[2], v[3]}, t, {}, {}, {}, {}});
     }
   }
 
@@ -165,7 +220,7 @@ class CertificateSearch {
       const std::uint32_t v[2] = {ends[0].idx(), ends[1].idx()};
       if (!all_locked(v, 2)) continue;
       if (points_equal(at(X_, v[0]), at(X_, v[1])))
-        keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {}});
+        keep({InfeasibilityKind::CoincidentEdge, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {}, {}});
     }
   }
 
@@ -177,7 +232,7 @@ class CertificateSearch {
       const auto f = mesh_.half_face_vertices(hf);
       const std::uint32_t v[3] = {f[0].idx(), f[1].idx(), f[2].idx()};
       if (all_locked(v, 3) && collinear(at(X_, v[0]), at(X_, v[1]), at(X_, v[2])))
-        keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}, {}});
+        keep({InfeasibilityKind::DegenerateFace, {v[0], v[1], v[2]}, h / 4, {}, {}, {}, {}});
     }
   }
 
@@ -193,7 +248,7 @@ class CertificateSearch {
       const std::uint32_t f = solid.touched_triangle(v[0], v[1]);
       if (f == BoundaryImageSolid::kNone) continue;
       const auto& t = solid.triangle(f);
-      keep({InfeasibilityKind::ChordTouchesBoundary, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {t[0], t[1], t[2]}});
+      keep({InfeasibilityKind::ChordTouchesBoundary, {v[0], v[1]}, mesh_.edge_tet(EdgeId(e)).first.idx(), {}, {}, {t[0], t[1], t[2]}, {}});
     }
   }
 
@@ -211,6 +266,45 @@ class CertificateSearch {
         for (std::uint32_t u : face) tri.insert(tri.end(), at(X_, u), at(X_, u) + 3);
       }
       if (tets.size() >= std::max<std::size_t>(1, options_.min_fixed_link_faces)) try_link_kernel(v, tets, tri);
+    }
+  }
+
+  // Edges between locked vertices whose fan holds two locked ring vertices in one half-plane of the
+  // edge's line with free ring vertices between them (EdgeFanWraps). The argument needs an embedded
+  // boundary image; that test (the costly part) runs once, at the first candidate.
+  void wrapping_edge_fans() {
+    if (full()) return;
+    int embedded = -1;  // not tested yet
+    std::vector<TetId> star;
+    std::vector<FanTet> unordered, fan;
+    std::vector<std::size_t> locked_at;  // positions in `fan` whose w is locked
+    for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
+      const auto ends = mesh_.edge_vertices(EdgeId(e));
+      const std::uint32_t a = ends[0].idx(), b = ends[1].idx();
+      if (!locked_[a] || !locked_[b] || points_equal(at(X_, a), at(X_, b))) continue;
+      star.clear();
+      const bool closed = mesh_.edge_star(EdgeId(e), [&](TetId t) { star.push_back(t); });
+      if (!ordered_fan(mesh_, a, b, star, unordered, fan)) continue;
+      // The ring in fan order; a cycle is walked twice so that a segment may pass its start.
+      locked_at.clear();
+      const std::size_t n = fan.size(), walk = closed ? 2 * n : n;
+      for (std::size_t i = 0; i < walk; ++i)
+        if (locked_[fan[i % n].w]) locked_at.push_back(i);
+      if (!closed && locked_[fan.back().w_next]) locked_at.push_back(n);  // the chain's last vertex
+      for (std::size_t j = 0; j + 1 < locked_at.size() && !full(); ++j) {
+        const std::size_t first = locked_at[j], last = locked_at[j + 1];
+        if (last - first < 2 || first >= n) continue;  // no free vertex between, or a repeat of the cycle
+        InfeasibilityCertificate c{InfeasibilityKind::EdgeFanWraps, {a, b}, fan[first].tet, {}, {}, {}, {}};
+        for (std::size_t i = first; i < last; ++i) {
+          c.constraint_tets.push_back(fan[i % n].tet);
+          c.ring.push_back(fan[i % n].w);
+        }
+        c.ring.push_back(fan[(last - 1) % n].w_next);
+        if (!same_half_plane(at(X_, a), at(X_, b), at(X_, c.ring.front()), at(X_, c.ring.back()))) continue;
+        if (embedded < 0) embedded = boundary_image_is_embedded(mesh_, X_) ? 1 : 0;
+        if (embedded == 0) return;
+        keep(std::move(c));
+      }
     }
   }
 
@@ -259,7 +353,7 @@ class CertificateSearch {
         for (std::size_t i : s) sub.push_back(ks[order[i]]);
         std::vector<Rational> lambda = one_dimensional_null_vector(sub);
         if (!farkas_certifies_empty(sub, lambda)) return false;
-        InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda, {}};
+        InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda, {}, {}};
         for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
         keep(std::move(c));
         return true;
@@ -278,6 +372,7 @@ const char* infeasibility_kind_name(InfeasibilityKind kind) {
     case InfeasibilityKind::DegenerateFace: return "degenerate-face";
     case InfeasibilityKind::ChordTouchesBoundary: return "chord-touches-boundary";
     case InfeasibilityKind::EmptyLinkKernel: return "empty-link-kernel";
+    case InfeasibilityKind::EdgeFanWraps: return "edge-fan-wraps";
   }
   return "?";
 }
@@ -304,6 +399,11 @@ std::string describe(const InfeasibilityCertificate& c) {
       for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
         s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
       return s + " have no common strict inner side";
+    case InfeasibilityKind::EdgeFanWraps:
+      return s + "around the edge between fixed vertices " + ids(c.simplex) + ", the fixed ring vertices " +
+             std::to_string(c.ring.front()) + " and " + std::to_string(c.ring.back()) +
+             " lie in one half-plane of its line, so the tets from one to the other (" + ids(c.constraint_tets) +
+             ") would turn a full circle";
   }
   return s;
 }
@@ -355,6 +455,30 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
         if (v >= nv || !locked[v] || v == c.simplex[0] || v == c.simplex[1]) return false;
       if (!is_boundary_face(mesh, f) || triangle_is_degenerate(at(X, f[0]), at(X, f[1]), at(X, f[2]))) return false;
       return segment_intersects_triangle(at(X, c.simplex[0]), at(X, c.simplex[1]), at(X, f[0]), at(X, f[1]), at(X, f[2])) &&
+             boundary_image_is_embedded(mesh, X);
+    }
+    case InfeasibilityKind::EdgeFanWraps: {
+      // The tets (a, b, ring[i], ring[i+1]), each positive in the source with this order, i.e. a path
+      // of the fan; the ends locked, the inner ring vertices free; then the exact geometric condition.
+      if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || !simplex_locked()) return false;
+      const std::size_t k = c.constraint_tets.size();
+      if (k < 2 || c.ring.size() != k + 1 || c.tet != c.constraint_tets[0]) return false;
+      const std::uint32_t a = c.simplex[0], b = c.simplex[1];
+      for (std::uint32_t v : c.ring)
+        if (v >= nv || v == a || v == b) return false;
+      if (!locked[c.ring.front()] || !locked[c.ring.back()] || c.ring.front() == c.ring.back()) return false;
+      for (std::size_t i = 1; i < k; ++i)
+        if (locked[c.ring[i]]) return false;
+      const std::vector<double>& S = mesh.positions();
+      for (std::size_t i = 0; i < k; ++i) {
+        const std::uint32_t t = c.constraint_tets[i];
+        if (t >= mesh.num_tet_slots() || !mesh.tet_is_live(TetId(t))) return false;
+        for (std::uint32_t v : {a, b, c.ring[i], c.ring[i + 1]})
+          if (!tet_contains(mesh, t, v)) return false;
+        if (orient3d(at(S, a), at(S, b), at(S, c.ring[i]), at(S, c.ring[i + 1])) <= 0) return false;
+      }
+      return !points_equal(at(X, a), at(X, b)) &&
+             same_half_plane(at(X, a), at(X, b), at(X, c.ring.front()), at(X, c.ring.back())) &&
              boundary_image_is_embedded(mesh, X);
     }
     case InfeasibilityKind::EmptyLinkKernel: {

@@ -24,6 +24,18 @@
 //                          not all zero, with Σ λ_F n_F = 0 and Σ λ_F (n_F·a_F) >= 0 (Farkas /
 //                          Motzkin) show that no point x_v satisfies them all: summing would give
 //                          0 > Σ λ_F n_F·a_F >= 0. n_F, the sums and λ are exact rationals.
+//   EdgeFanWraps         — an edge ab with both vertices locked and, in the fan of tets around
+//                          it (rotation order of the source), two locked ring vertices p and q with
+//                          only free ring vertices between them (at least one), whose images lie in
+//                          the same open half-plane bounded by the line ab (exact: orient3d(a,b,p,q)
+//                          = 0 and p, q on the same side of ab in a projection where (a,b,p) is not
+//                          degenerate), while the boundary image is embedded. A positive tet
+//                          (a,b,w,w') turns the half-plane of w to that of w' by an angle in (0, π),
+//                          so the tets from p to q would turn a whole multiple of 2π. A map with every
+//                          tet positive is a bijection (the boundary image being embedded), so the
+//                          tets around ab have disjoint wedges: at most 2π in all for an interior
+//                          edge, where the rest of its fan adds more, and less than the boundary's
+//                          dihedral angle (< 2π) for an edge of ∂M.
 // A certificate proves infeasibility at this connectivity only; refinement may still admit a map.
 #pragma once
 
@@ -37,7 +49,7 @@
 
 namespace volmap {
 
-enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel };
+enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel, EdgeFanWraps };
 
 struct InfeasibilityCertificate {
   InfeasibilityKind kind = InfeasibilityKind::FixedTet;
@@ -48,6 +60,9 @@ struct InfeasibilityCertificate {
   std::vector<Rational> multipliers;
   // ChordTouchesBoundary: the corners of the face of ∂M whose image the chord's image meets.
   std::vector<std::uint32_t> boundary_face;
+  // EdgeFanWraps: the ring vertices p, w_1, ..., w_k, q in fan order (constraint_tets: the k + 1 tets
+  // (a, b, p, w_1), ..., (a, b, w_k, q) between them).
+  std::vector<std::uint32_t> ring;
 };
 
 const char* infeasibility_kind_name(InfeasibilityKind kind);
