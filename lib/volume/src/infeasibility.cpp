@@ -294,15 +294,16 @@ class CertificateSearch {
       for (std::size_t j = 0; j + 1 < locked_at.size() && !full(); ++j) {
         const std::size_t first = locked_at[j], last = locked_at[j + 1];
         if (last - first < 2 || first >= n) continue;  // no free vertex between, or a repeat of the cycle
+        const std::uint32_t p = fan[first].w, q = fan[(last - 1) % n].w_next;
+        if (!same_half_plane(at(X_, a), at(X_, b), at(X_, p), at(X_, q))) continue;
+        if (embedded < 0) embedded = boundary_image_is_embedded(mesh_, X_) ? 1 : 0;
+        if (embedded == 0) return;
         InfeasibilityCertificate c{InfeasibilityKind::EdgeFanWraps, {a, b}, fan[first].tet, {}, {}, {}, {}};
         for (std::size_t i = first; i < last; ++i) {
           c.constraint_tets.push_back(fan[i % n].tet);
           c.ring.push_back(fan[i % n].w);
         }
-        c.ring.push_back(fan[(last - 1) % n].w_next);
-        if (!same_half_plane(at(X_, a), at(X_, b), at(X_, c.ring.front()), at(X_, c.ring.back()))) continue;
-        if (embedded < 0) embedded = boundary_image_is_embedded(mesh_, X_) ? 1 : 0;
-        if (embedded == 0) return;
+        c.ring.push_back(q);
         keep(std::move(c));
       }
     }
