@@ -1,4 +1,5 @@
-// point_tests.cpp — exact point equality and 3D collinearity (see <volmap/predicates.hpp>).
+// point_tests.cpp — exact point equality, 3D collinearity and half-planes about a line (see
+// <volmap/predicates.hpp>).
 // points_equal compares bit patterns, not doubles: under DAZ the hardware compares a subnormal as
 // zero, so `p[k] == q[k]` would call distinct points equal. collinear is three exact orient2d
 // (each public call guards the FP environment itself).
@@ -33,6 +34,18 @@ bool collinear(const double* a, const double* b, const double* c) {
   const double a_yz[2] = {a[1], a[2]}, b_yz[2] = {b[1], b[2]}, c_yz[2] = {c[1], c[2]};
   const double a_zx[2] = {a[2], a[0]}, b_zx[2] = {b[2], b[0]}, c_zx[2] = {c[2], c[0]};
   return orient2d(a_xy, b_xy, c_xy) == 0 && orient2d(a_yz, b_yz, c_yz) == 0 && orient2d(a_zx, b_zx, c_zx) == 0;
+}
+
+bool same_half_plane(const double* a, const double* b, const double* p, const double* q) {
+  if (orient3d(a, b, p, q) != 0) return false;
+  static constexpr int kAxes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (const auto& ax : kAxes) {
+    const double a2[2] = {a[ax[0]], a[ax[1]]}, b2[2] = {b[ax[0]], b[ax[1]]};
+    const double p2[2] = {p[ax[0]], p[ax[1]]}, q2[2] = {q[ax[0]], q[ax[1]]};
+    const int sp = orient2d(a2, b2, p2);
+    if (sp != 0) return orient2d(a2, b2, q2) == sp;
+  }
+  return false;  // (a, b, p) degenerate in every coordinate plane: p on the line ab
 }
 
 }  // namespace volmap

@@ -117,6 +117,30 @@ inline bool points_equal(const double* p, const double* q) {
     if (std::isnan(p[k]) || Q(p[k]) != Q(q[k])) return false;
   return true;
 }
+// p, q in one open half-plane of the line ab: n_p = (b−a)×(p−a) and n_q = (b−a)×(q−a) parallel
+// (n_p × n_q = 0) and pointing the same way (n_p · n_q > 0).
+inline bool same_half_plane(const double* a, const double* b, const double* p, const double* q) {
+  const DefaultFpEnvironment environment;
+  Q u[3], np[3], nq[3];
+  {
+    Q vp[3], vq[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = Q(b[k]) - Q(a[k]);
+      vp[k] = Q(p[k]) - Q(a[k]);
+      vq[k] = Q(q[k]) - Q(a[k]);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      np[k] = u[k1] * vp[k2] - u[k2] * vp[k1];
+      nq[k] = u[k1] * vq[k2] - u[k2] * vq[k1];
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    if (np[k1] * nq[k2] != np[k2] * nq[k1]) return false;
+  }
+  return np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2] > 0;
+}
 inline bool collinear(const double* a, const double* b, const double* c) {
   const DefaultFpEnvironment environment;
   Q u[3], v[3];

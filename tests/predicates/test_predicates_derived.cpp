@@ -1,4 +1,4 @@
-// The exact tests built on the predicates — points_equal, collinear, enclosed_volume_sign and the
+// The exact tests built on the predicates — points_equal, collinear, same_half_plane, enclosed_volume_sign and the
 // certification count count_nonpositive / nonpositive_tets — against the independent GMP oracle of
 // predicates/testing/oracle.hpp, on cases where double arithmetic gets them wrong.
 #include <doctest/doctest.h>
@@ -54,6 +54,55 @@ TEST_CASE("points_equal: value equality of coordinates, ±0 equal, NaN and neigh
     for (int k = 0; k < 3; ++k) p[k] = values[pick(rng)], q[k] = values[pick(rng)];
     REQUIRE(volmap::points_equal(p, q) == or_::points_equal(p, q));
   }
+}
+
+TEST_CASE("same_half_plane: exact integer planes far from the origin, rounded near-coplanar points, points on the line") {
+  std::mt19937_64 rng(23);
+  std::uniform_int_distribution<int> small(-20, 20);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int same = 0, other = 0, on_line = 0, near_agree = 0, near_same = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double a[3], b[3], p[3], q[3];
+    const double shift = (i % 2) ? 1e15 : 0.0;  // integers far from the origin stay exact
+    for (int k = 0; k < 3; ++k) {
+      a[k] = shift + small(rng);
+      b[k] = shift + small(rng);
+      p[k] = shift + small(rng);
+    }
+    // q = a + s (p − a) + t (b − a) with small integers: coplanar exactly; s > 0 same side, s < 0 the
+    // other, s = 0 on the line.
+    const int s = small(rng) % 4, t = small(rng) % 4;
+    for (int k = 0; k < 3; ++k) q[k] = a[k] + s * (p[k] - a[k]) + t * (b[k] - a[k]);
+    const bool expected = or_::same_half_plane(a, b, p, q);
+    REQUIRE(volmap::same_half_plane(a, b, p, q) == expected);
+    REQUIRE(volmap::same_half_plane(b, a, q, p) == expected);  // symmetric in (a, b) and in (p, q)
+    if (!volmap::collinear(a, b, p) && !volmap::points_equal(a, b)) {
+      same += s > 0 && expected;
+      other += s < 0 && !expected;
+      on_line += s == 0 && !expected;
+    }
+    // Rounded: q from a fractional s, usually a hair off the plane.
+    double r[3];
+    const double sr = u(rng);
+    for (int k = 0; k < 3; ++k) r[k] = a[k] - shift + sr * (p[k] - a[k]) + u(rng) * 1e-17 + shift;
+    const bool e2 = or_::same_half_plane(a, b, p, r);
+    near_same += e2;
+    near_agree += volmap::same_half_plane(a, b, p, r) == e2;
+  }
+  CHECK(near_agree == 20000);
+  CHECK(same > 1000);
+  CHECK(other > 1000);
+  CHECK(on_line > 500);
+  MESSAGE("same_half_plane: " << same << " same side, " << other << " opposite, " << on_line << " on the line; rounded cases coplanar and same side: " << near_same);
+  // p on the line ab: never a half-plane.
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, p[3] = {3, 0, 0}, q[3] = {0, 1, 0};
+  CHECK_FALSE(volmap::same_half_plane(a, b, p, q));
+  CHECK_FALSE(volmap::same_half_plane(a, b, q, p));
+  // A subnormal lift of q off the plane is seen.
+  const double p2[3] = {0, 1, 0}, q2[3] = {0.5, 2, 0x1p-1074};
+  const double q3[3] = {0.5, 2, 0};
+  CHECK_FALSE(volmap::same_half_plane(a, b, p2, q2));
+  CHECK(volmap::same_half_plane(a, b, p2, q3));
 }
 
 TEST_CASE("collinear: near-collinear rounded points, exact integer lines, coincident points") {

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
+#include "map_test_meshes.hpp"
 #include "vmap_test_util.hpp"
 
 namespace {
@@ -288,11 +289,7 @@ TEST_CASE("an edge fan whose fixed ring vertices share a half-plane of the edge'
   skipping.constraint_tets = {c.constraint_tets.front()};
   CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, f.target, skipping));
   // The mapper at fixed connectivity stops with the certificate (no map is claimed).
-  volmap::BoundaryMap map;
-  for (std::uint32_t v = 0; v < 6; ++v) {
-    map.vids.push_back(v);
-    map.xyz.insert(map.xyz.end(), &f.target[3 * v], &f.target[3 * v] + 3);
-  }
+  const volmap::BoundaryMap map = map_test::boundary_map_of(f.locked, f.target);
   volmap::VolumeMapOptions o;
   o.allow_refinement = false;
   o.time_limit_seconds = 5;

@@ -157,21 +157,6 @@ bool ordered_fan(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const st
   return true;
 }
 
-// p and q (not on the line ab) lie in the same open half-plane bounded by the line ab: coplanar with
-// it, and on the same side of it in a coordinate projection that keeps (a, b, p) non-degenerate
-// (such a projection is injective on their common plane).
-bool same_half_plane(const double* a, const double* b, const double* p, const double* q) {
-  if (orient3d(a, b, p, q) != 0) return false;
-  static constexpr int kAxes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
-  for (const auto& ax : kAxes) {
-    const double a2[2] = {a[ax[0]], a[ax[1]]}, b2[2] = {b[ax[0]], b[ax[1]]};
-    const double p2[2] = {p[ax[0]], p[ax[1]]}, q2[2] = {q[ax[0]], q[ax[1]]};
-    const int sp = orient2d(a2, b2, p2);
-    if (sp != 0) return orient2d(a2, b2, q2) == sp;
-  }
-  return false;  // (a, b, p) degenerate in every projection: collinear
-}
-
 class CertificateSearch {
  public:
   CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,

@@ -56,6 +56,11 @@ bool points_equal(const double* p, const double* q);
 // collinear: a, b, c on one line (also when two or three of them coincide), i.e. (b−a)×(c−a) = 0,
 // decided as orient2d = 0 in the three coordinate planes.
 bool collinear(const double* a, const double* b, const double* c);
+// same_half_plane: p and q lie in one open half-plane bounded by the line ab (a != b), i.e. the four
+// points are coplanar (orient3d = 0) and p, q, both off the line, are on the same side of it; decided
+// as orient2d in a coordinate plane where (a, b, p) does not degenerate (the projection is then
+// injective on their common plane). False when p is on the line ab.
+bool same_half_plane(const double* a, const double* b, const double* p, const double* q);
 
 // Exact sign of the volume enclosed by a closed triangle surface: sign of Σ det[a; b; c] over the
 // triangles (a, b, c) (6 × the signed volume, divergence theorem with the origin as apex). Positive
