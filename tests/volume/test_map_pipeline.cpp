@@ -123,6 +123,68 @@ TEST_CASE("B0: splitting the chord diagonal keeps ids, appends one interior vert
   CHECK(f.chord_faces.empty());
 }
 
+TEST_CASE("B0: edge splits of sliver tets: every child exactly positive, or refused and unchanged") {
+  // One tet, its fourth vertex a rounding step off the plane of the other three, at random
+  // orientations: the children of an edge split have volumes of the order of the rounding of the
+  // split point. Each split must give exactly positive children or be refused with the mesh as it
+  // was (the fixture below is one that is refused).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t split = 0, refused = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    volmap::TetMeshData m;
+    double a[3], b[3], c[3];
+    for (int i = 0; i < 3; ++i) a[i] = u(rng), b[i] = u(rng), c[i] = u(rng);
+    const double s = u(rng), t = u(rng);
+    double d[3];
+    for (int i = 0; i < 3; ++i) d[i] = a[i] + s * (b[i] - a[i]) + t * (c[i] - a[i]);
+    m.xyz = {a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2]};
+    m.tets = {0, 1, 2, 3};
+    const int sign = volmap::orient3d(&m.xyz[0], &m.xyz[3], &m.xyz[6], &m.xyz[9]);
+    if (sign == 0) continue;
+    if (sign < 0) std::swap(m.tets[0], m.tets[1]);
+    const auto before = m;
+    std::vector<std::uint8_t> locked(4, 1);
+    volmap::ChordSplitResult r;
+    REQUIRE_NOTHROW(r = volmap::split_chords(m, locked, {{{m.tets[0], m.tets[1]}}}, {}));
+    if (r.edges_split == 1) {
+      ++split;
+      CHECK(m.num_tets() == 2);
+      CHECK(volmap::count_nonpositive(m.xyz, m.tets) == 0);
+    } else {
+      ++refused;
+      CHECK(r.splits_refused == 1);
+      CHECK(m.xyz == before.xyz);
+      CHECK(m.tets == before.tets);
+    }
+  }
+  CHECK(split > 0);
+  MESSAGE("sliver edge splits: " << split << " split, " << refused << " refused");
+}
+
+TEST_CASE("B0: a chord face with no verified split point is left as it was, without an exception") {
+  // Two tets of TetGen's remesh of the coarse limbs shape (pq3.0Y) around face (0, 1, 2), as B0 met
+  // them: the face's vertices are collinear to 1e-17 of its edges (area 6e-20, edges 2e-3), so every
+  // barycentric split point leaves a child non-positive in doubles. The split used to throw, which
+  // ended the whole mapping run; now it is refused (counted) and the later stages go on.
+  volmap::TetMeshData m;
+  m.xyz = {-0x1.ffbf7d84561a8p+1, 0x1.be7c674da4487p-5, -0x1.4066ed165dcb3p-1,
+           -0x1.ff7d2c7297e4ep+1, 0x1.c512d1f1d7fdcp-5, -0x1.41ce118c0caeap-1,
+           -0x1.ff5c03e9b8ca1p+1, 0x1.c85e0743f1d86p-5, -0x1.4281a3c6e4206p-1,
+           -0x1.00eb57ab74bd4p+2, 0x1.cb68ae19458e6p-5, -0x1.4e7514cf1c2fap-1,
+           -0x1.00bef7ebca22ap+2, -0x1.cbafe313f738cp-7, -0x1.343da6e9580b2p-1};
+  m.tets = {0, 3, 2, 1, 1, 2, 0, 4};
+  REQUIRE(volmap::count_nonpositive(m.xyz, m.tets) == 0);
+  const auto before = m;
+  std::vector<std::uint8_t> locked(5, 1);
+  volmap::ChordSplitResult r;
+  REQUIRE_NOTHROW(r = volmap::split_chords(m, locked, {}, {{{0, 1, 2}}}));
+  CHECK(r.faces_split == 0);
+  CHECK(r.splits_refused == 1);
+  CHECK(m.xyz == before.xyz);
+  CHECK(m.tets == before.tets);
+}
+
 TEST_CASE("B0: face split 1->3 turns each of the two tets into three exactly positive children") {
   auto m = map_test::kuhn_grid(1);
   std::vector<std::uint8_t> bnd(8, 1);

@@ -55,13 +55,9 @@ BadTetSplitResult split_edges_of_nonpositive_tets(MapState& state, std::size_t m
   for (const auto& e : edges) {
     const std::size_t slots = state.source.num_vertex_slots();
     const std::array<double, 3> a = state.target[VertexId(e[0])], b = state.target[VertexId(e[1])];
-    try {
-      split_chords(state.source, {e}, {});
-    } catch (const Error&) {  // no exactly positive split point: the mesh is unchanged
-      ++r.edges_skipped;
-      continue;
-    }
-    if (state.source.num_vertex_slots() == slots) continue;  // the edge was gone (an earlier split)
+    const ChordSplitResult done = split_chords(state.source, {e}, {});
+    r.edges_skipped += done.splits_refused;  // no exactly positive split point: the mesh is unchanged
+    if (state.source.num_vertex_slots() == slots) continue;  // the edge was gone, or refused
     const VertexId w(std::uint32_t(state.source.num_vertex_slots() - 1));
     state.target[w] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
     state.locked[w] = 0;

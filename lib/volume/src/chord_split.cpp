@@ -59,13 +59,17 @@ bool split_point(const TetMesh& mesh, const std::vector<TetId>& parents, const s
   return false;
 }
 
-// Splits the simplex `verts` (n = 2 or 3) at a point inside it. Returns false when it is not in the mesh.
-bool split(TetMesh& mesh, const std::uint32_t* verts, int n) {
+// Splits the simplex `verts` (n = 2 or 3) at a point inside it. Returns false (mesh unchanged) when
+// it is not in the mesh, or when no verified split point exists (counted in *refused; the simplex
+// stays for the later stages).
+bool split(TetMesh& mesh, const std::uint32_t* verts, int n, std::size_t* refused) {
   const std::vector<TetId> parents = tets_with(mesh, verts, n);
   if (parents.empty()) return false;
   double p[3];
-  if (!split_point(mesh, parents, verts, n, p))
-    throw Error(ErrorKind::Failed, "", 0, "chord split: no exactly positive split point for a near-degenerate simplex");
+  if (!split_point(mesh, parents, verts, n, p)) {
+    ++*refused;
+    return false;
+  }
   const TetId t = parents.front();
   if (n == 2) {
     mesh.split_edge(t, mesh.tet_local_index(t, VertexId(verts[0])), mesh.tet_local_index(t, VertexId(verts[1])), p);
@@ -237,7 +241,7 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
     if (try_removal(e, gone)) continue;
     if (gone) continue;
     const std::vector<std::uint32_t> around = stamps.neighbourhood(mesh, e.v, e.hint);
-    if (!around.empty() && split(mesh, e.v.data(), 2)) {
+    if (!around.empty() && split(mesh, e.v.data(), 2, &r.splits_refused)) {
       stamps.edited(around, mesh);
       ++r.edges_split;
     }
@@ -262,7 +266,7 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
     if (!exists(f)) continue;
     if (flip_chord_face(mesh, rules, f))
       ++r.faces_flipped;
-    else if (split(mesh, f.data(), 3))
+    else if (split(mesh, f.data(), 3, &r.splits_refused))
       ++r.faces_split;
   }
   r.tets_after = mesh.num_tets();
@@ -294,7 +298,7 @@ bool free_fixed_tet(TetMesh& mesh, const ChordRules& rules, TetId t, ChordSplitR
       ++r.faces_flipped;
       return true;
     }
-  if (!split(mesh, faces.front().second.data(), 3)) return false;
+  if (!split(mesh, faces.front().second.data(), 3, &r.splits_refused)) return false;
   ++r.faces_split;
   return true;
 }
@@ -326,9 +330,9 @@ ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::u
   r.tets_before = mesh.num_tets();
   const std::size_t nv0 = mesh.num_vertices();
   for (const auto& e : edges)
-    if (split(mesh, e.data(), 2)) ++r.edges_split;
+    if (split(mesh, e.data(), 2, &r.splits_refused)) ++r.edges_split;
   for (const auto& f : faces)
-    if (split(mesh, f.data(), 3)) ++r.faces_split;
+    if (split(mesh, f.data(), 3, &r.splits_refused)) ++r.faces_split;
   r.tets_after = mesh.num_tets();
   r.vertices_added = mesh.num_vertices() - nv0;
   return r;

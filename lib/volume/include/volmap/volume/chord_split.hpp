@@ -27,11 +27,15 @@ struct ChordSplitResult {
   std::size_t tets_before = 0;
   std::size_t tets_after = 0;
   std::size_t vertices_added = 0;
+  // Simplices left unsplit because no verified point keeps every child exactly positive (the
+  // centroid, nudged barycentric weights and the strict kernel of the children's faces all failed:
+  // a sliver parent); the mesh is unchanged there.
+  std::size_t splits_refused = 0;
 };
 
 // Splits `edges` first, then those of `faces` that still exist. Edges/faces are given by vertex ids;
-// simplices not found (already split) are skipped. Throws Error(Failed) when no split point keeps
-// every child exactly positive (a near-degenerate simplex).
+// simplices not found (already split) are skipped, and so are those without a verified split point
+// (splits_refused).
 ChordSplitResult split_chords(TetMesh& mesh, const std::vector<std::array<std::uint32_t, 2>>& edges,
                               const std::vector<std::array<std::uint32_t, 3>>& faces);
 
