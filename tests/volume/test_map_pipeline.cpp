@@ -138,8 +138,8 @@ TEST_CASE("B0: edge splits of sliver tets: every child exactly positive, or refu
     const double s = u(rng), t = u(rng);
     double d[3];
     for (int i = 0; i < 3; ++i) d[i] = a[i] + s * (b[i] - a[i]) + t * (c[i] - a[i]);
-    m.xyz = {a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2]};
-    m.tets = {0, 1, 2, 3};
+    m.xyz = std::vector<double>{a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2]};
+    m.tets = std::vector<std::uint32_t>{0, 1, 2, 3};
     const int sign = volmap::orient3d(&m.xyz[0], &m.xyz[3], &m.xyz[6], &m.xyz[9]);
     if (sign == 0) continue;
     if (sign < 0) std::swap(m.tets[0], m.tets[1]);
@@ -168,12 +168,12 @@ TEST_CASE("B0: a chord face with no verified split point is left as it was, with
   // barycentric split point leaves a child non-positive in doubles. The split used to throw, which
   // ended the whole mapping run; now it is refused (counted) and the later stages go on.
   volmap::TetMeshData m;
-  m.xyz = {-0x1.ffbf7d84561a8p+1, 0x1.be7c674da4487p-5, -0x1.4066ed165dcb3p-1,
+  m.xyz = std::vector<double>{-0x1.ffbf7d84561a8p+1, 0x1.be7c674da4487p-5, -0x1.4066ed165dcb3p-1,
            -0x1.ff7d2c7297e4ep+1, 0x1.c512d1f1d7fdcp-5, -0x1.41ce118c0caeap-1,
            -0x1.ff5c03e9b8ca1p+1, 0x1.c85e0743f1d86p-5, -0x1.4281a3c6e4206p-1,
            -0x1.00eb57ab74bd4p+2, 0x1.cb68ae19458e6p-5, -0x1.4e7514cf1c2fap-1,
            -0x1.00bef7ebca22ap+2, -0x1.cbafe313f738cp-7, -0x1.343da6e9580b2p-1};
-  m.tets = {0, 3, 2, 1, 1, 2, 0, 4};
+  m.tets = std::vector<std::uint32_t>{0, 3, 2, 1, 1, 2, 0, 4};
   REQUIRE(volmap::count_nonpositive(m.xyz, m.tets) == 0);
   const auto before = m;
   std::vector<std::uint8_t> locked(5, 1);

@@ -168,6 +168,7 @@ class VolumeMapper {
     result_.chord_edges_removed = cs.edges_removed;
     result_.chord_faces_flipped = cs.faces_flipped;
     result_.chord_cone_patches = cs.cone_patches;
+    result_.chord_splits_refused = cs.splits_refused;
     result_.refined = cs.vertices_added > 0 || cs.edges_removed > 0 || cs.faces_flipped > 0;
   }
 
@@ -573,14 +574,8 @@ VolumeMapResult better_of_two_starts(VolumeMapResult first, VolumeMapResult seco
   return std::move(kept);
 }
 
-}  // namespace
-
-VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
-  std::unique_ptr<tbb::global_control> thread_limit;
-  if (options.max_threads > 0)
-    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(options.max_threads));
-  if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
-    throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
+// The run from the kept start and, when worth it, the restart from the other one.
+VolumeMapResult map_from_both_starts(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
   const TimeBudget total(options.time_limit_seconds);
   std::shared_ptr<PreparedSource> prepared;
   VolumeMapResult first = run_mapper(input, map, options, nullptr, &prepared);  // validates the input (Error(BadInput))
@@ -597,6 +592,79 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     first.seconds = total.elapsed();
     return first;
   }
+}
+
+// Runs from the input that ended uncertified get the remeshed source when the map may exist at
+// some refinement and at least kMinRestartShare of the limit is left.
+bool worth_a_remesh(const VolumeMapResult& r, const TimeBudget& total) {
+  if (r.certified || r.feasibility.infeasible_with_any_refinement()) return false;
+  return !total.limited() || total.remaining() >= kMinRestartShare * total.limit_seconds();
+}
+
+// Maps the remeshed source with the time left; returns the better of `first` and that run (growth,
+// input counts and the feasibility report of the input). A remesh that fails or breaks its contract
+// is a stage failure: `first` stands.
+VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& input, const BoundaryMap& map,
+                                     const VolumeMapOptions& options, const TimeBudget& total) {
+  const TimeBudget remesh_clock;
+  auto keep_first = [&](const std::string& why) {
+    first.stages.push_back({"remesh", remesh_clock.elapsed(), first.nonpositive, first.source.num_tets(), why});
+    first.seconds = total.elapsed();
+    return std::move(first);
+  };
+  TetMeshData remeshed;
+  std::string problem;
+  try {
+    remeshed = options.remesh_interior(input);
+    problem = interior_remesh_problem(input, remeshed);
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  if (!problem.empty()) return keep_first("remesh refused: " + problem);
+  VolumeMapOptions again = options;
+  again.remesh_interior = nullptr;
+  again.initial_xyz.clear();
+  if (total.limited()) again.time_limit_seconds = total.remaining();
+  const double remesh_seconds = remesh_clock.elapsed();
+  VolumeMapResult second;
+  try {
+    second = map_from_both_starts(remeshed, map, again);
+  } catch (const Error& e) {
+    return keep_first("mapping the remeshed source failed: " + e.reason());
+  }
+  second.input_tets = first.input_tets;
+  second.input_vertices = first.input_vertices;
+  second.feasibility = first.feasibility;
+  second.infeasibility = first.infeasibility;
+  second.refined = true;
+  second.remeshed = true;
+  const bool second_wins = second.certified || (!first.certified && second.nonpositive < first.nonpositive);
+  std::vector<VolumeMapStage> stages = std::move(first.stages);
+  stages.push_back({"remesh", remesh_seconds, first.nonpositive, remeshed.num_tets(), ""});
+  stages.insert(stages.end(), second.stages.begin(), second.stages.end());
+  VolumeMapResult& kept = second_wins ? second : first;
+  kept.stages = std::move(stages);
+  kept.seconds = total.elapsed();
+  return std::move(kept);
+}
+
+}  // namespace
+
+VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (options.max_threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(options.max_threads));
+  if (!(options.tlc_time_share >= 0 && options.tlc_time_share <= 1))
+    throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
+  if (!(options.remesh_share > 0 && options.remesh_share <= 1))
+    throw Error(ErrorKind::BadInput, "", 0, "remesh_share must be in (0, 1]");
+  const bool remesh = options.allow_refinement && options.remesh_interior;
+  const TimeBudget total(options.time_limit_seconds);
+  VolumeMapOptions from_input = options;
+  if (remesh && total.limited()) from_input.time_limit_seconds = options.remesh_share * total.limit_seconds();
+  VolumeMapResult first = map_from_both_starts(input, map, from_input);  // validates the input (Error(BadInput))
+  if (!remesh || !worth_a_remesh(first, total)) return first;
+  return with_remeshed_source(std::move(first), input, map, options, total);
 }
 
 }  // namespace volmap

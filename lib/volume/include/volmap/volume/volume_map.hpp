@@ -10,7 +10,8 @@
 // bad-tet flips → local FFM (small-lift TLC, then global FFM, once each when they stall) →
 // validity-preserving quality pass (§5, cascade only). In the
 // cascade every link-kernel and local-FFM stage that leaves bad tets is followed by the kernel
-// descent (§10).
+// descent (§10). Uncertified runs get a restart from the other start (§8 step 10) and, with
+// refinement and a remesher, the whole pipeline again on a new interior (§8 step 11).
 // The stages run on one MapState (map_state.hpp, map_stages.hpp); each is judged by the exact count
 // of non-positive tets and undone when it makes it worse (StageJudge). A result is certified only
 // when check_map (the exact check of the check wing) certifies the returned arrays.
@@ -22,6 +23,7 @@
 
 #include <volmap/volume/feasibility.hpp>
 #include <volmap/volume/infeasibility.hpp>
+#include <volmap/volume/interior_remesh.hpp>
 #include <volmap/core/mesh_data.hpp>
 
 #include <cstddef>
@@ -107,6 +109,14 @@ struct VolumeMapOptions {
   // gets what it leaves when it ends uncertified with at least a tenth of the limit left.
   // 1 = never restart.
   double restart_share = 0.5;
+  // With refinement: a remesher of the source's interior (interior_remesh.hpp; empty = none). When
+  // set, the runs from the input get remesh_share of the time limit; when they end uncertified
+  // (and no certificate rules out every map) with at least a tenth of the limit left, the remeshed
+  // source, once interior_remesh_problem accepts it, is mapped with the time left (from Tutte 3D),
+  // and the certified run, else the one with fewer non-positive tets, is returned. Growth and the
+  // feasibility report always refer to the input (docs/mapping.md §8 "Interior remesh").
+  InteriorRemesher remesh_interior;
+  double remesh_share = 0.5;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
@@ -132,6 +142,7 @@ struct VolumeMapResult {
   std::size_t chord_edges_split = 0, chord_faces_split = 0, cone_patches = 0;
   std::size_t chord_edges_removed = 0, chord_faces_flipped = 0;  // B0 flips (no new vertex)
   std::size_t chord_cone_patches = 0;                              // B0 cone patches (one new vertex each)
+  std::size_t chord_splits_refused = 0;                            // B0 simplices with no verified split point (left)
   std::size_t bad_tet_flips = 0;                                   // flips that removed non-positive tets (bad_tet_flip.hpp)
   std::size_t growth_budget_escalations = 0;                       // times B1's budget grew (max_growth_last_resort)
   std::size_t cone_search_widenings = 0;  // times B1's region search was widened (ConeRepairOptions::search_escalations)
@@ -141,6 +152,7 @@ struct VolumeMapResult {
   // started on a convex image)
   std::optional<StartMap> other_start;
   bool restarted = false;            // two runs (see restart_share); stages lists both, "restart" between
+  bool remeshed = false;             // the result maps the remeshed source (stage "remesh" before its runs)
   FeasibilityReport feasibility;    // on the input
   // Exact local certificates that no strictly positive map exists at the input connectivity
   // (infeasibility.hpp, each verified). Without refinement a non-empty list ends the run before
