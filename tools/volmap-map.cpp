@@ -19,7 +19,9 @@
 // --method ffm (default) runs the cascade of volmap/volume_map.hpp (Tutte or --initial → TLC → link-kernel →
 // local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
-// With --refined-input, B0 (chord flips and splits, docs/mapping.md §4) and B1 (cone repair, §7) may refine the source.
+// With --refined-input, B0 (chord flips and splits, docs/mapping.md §4) and B1 (cone repair, §7) may refine the source,
+// and, when this build has TetGen, the last resort remeshes the interior (§8 "Interior remesh"; --no-remesh: never):
+// the runs from the input get half the time limit, an uncertified result the remeshed source with the rest.
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
@@ -37,6 +39,9 @@
 #include <volmap/io/io.hpp>
 #include <volmap/predicates_rational.hpp>
 #include <volmap/volume/volume_map.hpp>
+#ifdef VOLMAP_HAVE_TETGEN
+#include <volmap/tetgen/remesh.hpp>
+#endif
 
 #include <cstdio>
 
@@ -66,6 +71,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"tutte", "radial", "fewest"}));
   app.add_flag("--no-restart", no_restart, "with --start fewest: never restart from the other start (default: when both starts were computed and the first run is not certified in half the time limit, the other start gets the rest; on a convex image, where Tutte starts alone, the radial start gets what an uncertified first run leaves, if at least a tenth of the limit)");
   app.add_flag("--no-refine", no_refine, "fixed connectivity (never refine)");
+  bool no_remesh = false;
+  double remesh_quality = 3.0;  // InteriorRemeshOptions::quality
+  app.add_flag("--no-remesh", no_remesh,
+               "refinement: never remesh the interior (default, when built with TetGen: runs from the input get half the time "
+               "limit; if they end uncertified, the interior is re-tetrahedralised keeping the boundary and every input "
+               "vertex, and mapped with the rest)");
+  app.add_option("--remesh-quality", remesh_quality, "refinement: TetGen radius-edge bound of the interior remesh (default 3)")
+      ->check(volmap_tools::finite_range(1.0, 1e6));
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
       ->check(CLI::Range(0.0, 1.0));
@@ -138,6 +151,15 @@ int main(int argc, char** argv) {
     if (no_local_rounds) opt.local_rounds_max_bad = 0;
     opt.kernel_descent = !no_kernel_descent;
     opt.bad_tet_flips = !no_flips;
+#ifdef VOLMAP_HAVE_TETGEN
+    if (opt.allow_refinement && !no_remesh)
+      opt.remesh_interior = [remesh_quality](const volmap::TetMeshData& source) {
+        return volmap::remesh_interior(source, volmap::InteriorRemeshOptions{remesh_quality});
+      };
+#else
+    (void)no_remesh;
+    (void)remesh_quality;
+#endif
     const volmap::VolumeMapResult r =
         volmap_tools::naming_file(in_path, [&] { return volmap::compute_volume_map(input, map, opt); });
 
@@ -175,6 +197,7 @@ int main(int argc, char** argv) {
                        {"certified_by", r.certified_by},
                        {"start", r.start == volmap::StartMap::Radial ? "radial" : "tutte"},
                        {"restarted", r.restarted},
+                       {"remeshed", r.remeshed},
                        {"input_tets", r.input_tets},
                        {"input_vertices", r.input_vertices},
                        {"output_tets", written.num_tets()},
@@ -197,6 +220,7 @@ int main(int argc, char** argv) {
                        {"chord_edges_removed", r.chord_edges_removed},
                        {"chord_faces_flipped", r.chord_faces_flipped},
                        {"chord_cone_patches", r.chord_cone_patches},
+                       {"chord_splits_refused", r.chord_splits_refused},
                        {"growth_budget_escalations", r.growth_budget_escalations},
                        {"cone_search_widenings", r.cone_search_widenings},
                        {"cone_patches", r.cone_patches},

@@ -1,0 +1,58 @@
+// remesh_interior (volmap/tetgen/remesh.hpp): TetGen's new interior keeps every input vertex (interior
+// ones included) at its id and bit-identical position and the boundary triangles as they are —
+// checked by the mapper's own exact contract check (interior_remesh_problem) and by counts — and on
+// a coarse mesh without interior vertices it adds interior points.
+#include <doctest/doctest.h>
+
+#include <volmap/core/boundary_faces.hpp>
+#include <volmap/predicates.hpp>
+#include <volmap/tetgen/remesh.hpp>
+#include <volmap/tetgen/tetrahedralize.hpp>
+#include <volmap/testing/generate.hpp>
+#include <volmap/volume/interior_remesh.hpp>
+
+using namespace volmap;
+
+namespace {
+
+std::size_t interior_vertex_count(const TetMeshData& m) { return m.num_vertices() - boundary_vertex_ids(m).size(); }
+
+// TetGen without quality refinement on the boundary of a Kuhn grid: no interior vertex at all.
+TetMeshData coarse_cube(std::size_t n) {
+  const TetMeshData grid = generate_kuhn_unit_cube(n);
+  TriangleSurface surface;  // the boundary vertices only (renumbered), so TetGen adds no interior point
+  std::vector<std::uint32_t> id(grid.num_vertices(), 0xFFFFFFFFu);
+  for (const std::uint64_t hf : boundary_half_faces(grid))
+    for (const std::uint32_t v : half_face_vertices(grid, hf)) {
+      if (id[v] == 0xFFFFFFFFu) {
+        id[v] = std::uint32_t(surface.num_vertices());
+        for (int d = 0; d < 3; ++d) surface.xyz.push_back(grid.xyz[3 * v + std::size_t(d)]);
+      }
+      surface.tris.push_back(id[v]);
+    }
+  TetrahedralizeOptions coarse;
+  coarse.coarse = true;
+  return tetrahedralize_surface(surface, coarse);
+}
+
+}  // namespace
+
+TEST_CASE("remesh_interior keeps the vertices, interior ones too, and the boundary triangles") {
+  const TetMeshData grid = generate_kuhn_unit_cube(4);
+  REQUIRE(interior_vertex_count(grid) == 27);
+  const TetMeshData remeshed = remesh_interior(grid);
+  CHECK(interior_remesh_problem(grid, remeshed).empty());
+  CHECK(remeshed.num_vertices() >= grid.num_vertices());
+  CHECK(boundary_half_faces(remeshed).size() == boundary_half_faces(grid).size());
+  CHECK(count_nonpositive(remeshed.xyz, remeshed.tets) == 0);
+}
+
+TEST_CASE("remesh_interior gives a coarse mesh interior vertices") {
+  const TetMeshData coarse = coarse_cube(6);
+  REQUIRE(interior_vertex_count(coarse) == 0);
+  InteriorRemeshOptions options;
+  options.quality = 1.414;
+  const TetMeshData remeshed = remesh_interior(coarse, options);
+  CHECK(interior_remesh_problem(coarse, remeshed).empty());
+  CHECK(interior_vertex_count(remeshed) > 0);
+}
