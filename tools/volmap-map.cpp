@@ -35,6 +35,7 @@
 #include "support/tool_common.hpp"
 
 #include <volmap/check/map_check.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/io/io.hpp>
 #include <volmap/predicates_rational.hpp>
@@ -43,6 +44,7 @@
 #include <volmap/tetgen/remesh.hpp>
 #endif
 
+#include <algorithm>
 #include <cstdio>
 
 int main(int argc, char** argv) {
@@ -82,7 +84,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
   app.add_option("--quality-tol", quality_tol, "quality pass: stop at the first iteration lowering the energy by less than this fraction (0 = run to the iteration cap or the time share)")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--time-limit", time_limit, "soft time limit in seconds (default 60; 0 = none: every stage then runs to its own iteration cap, which can take many minutes)")
+  app.add_option("--time-limit", time_limit, "soft time limit in seconds for the whole run, reading and writing included (default 60; 0 = none: every stage then runs to its own iteration cap, which can take many minutes)")
       ->check(finite_non_negative());
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
   app.add_option("--tlc-share", tlc_share, "cascade: fraction of the remaining time given to the first TLC stage")
@@ -97,6 +99,7 @@ int main(int argc, char** argv) {
   app.add_option("--initial", initial_path, "start from this map (same vertices/tets as the input; boundary = the prescribed map) instead of Tutte 3D");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
+    const volmap::TimeBudget run_clock;
     if (map_path == "-" && initial_path.empty())
       throw volmap::Error(volmap::ErrorKind::BadInput, "map `-` needs --initial (the boundary map is taken from it)");
     volmap_tools::RunFiles files;
@@ -138,7 +141,9 @@ int main(int argc, char** argv) {
     opt.allow_refinement = !no_refine && refined_out;
     opt.max_growth = max_growth;
     opt.max_growth_last_resort = max_growth_cap;
-    opt.time_limit_seconds = time_limit;
+    // The mapper gets the limit less what reading and validating took, and as much again for
+    // writing the outputs and reading them back for the final check.
+    opt.time_limit_seconds = time_limit > 0 ? std::max(1e-3, time_limit - 2 * run_clock.elapsed()) : 0;
     opt.max_threads = threads;
     opt.quality_pass = !no_quality;
     opt.start = start == "tutte" ? volmap::StartMap::Tutte : start == "radial" ? volmap::StartMap::Radial : volmap::StartMap::Fewest;
