@@ -5,11 +5,14 @@
 #include <doctest/doctest.h>
 
 #include <volmap/core/boundary_faces.hpp>
+#include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/tetgen/remesh.hpp>
 #include <volmap/tetgen/tetrahedralize.hpp>
 #include <volmap/testing/generate.hpp>
 #include <volmap/volume/interior_remesh.hpp>
+
+#include <algorithm>
 
 using namespace volmap;
 
@@ -55,4 +58,14 @@ TEST_CASE("remesh_interior gives a coarse mesh interior vertices") {
   const TetMeshData remeshed = remesh_interior(coarse, options);
   CHECK(interior_remesh_problem(coarse, remeshed).empty());
   CHECK(interior_vertex_count(remeshed) > 0);
+}
+
+TEST_CASE("remesh_interior keeps a single tet label and refuses several") {
+  TetMeshData grid = generate_kuhn_unit_cube(2);
+  grid.tet_labels.assign(grid.num_tets(), 7);
+  const TetMeshData remeshed = remesh_interior(grid);
+  REQUIRE(remeshed.tet_labels.size() == remeshed.num_tets());
+  CHECK(std::count(remeshed.tet_labels.begin(), remeshed.tet_labels.end(), 7) == std::ptrdiff_t(remeshed.num_tets()));
+  grid.tet_labels[3] = 8;
+  CHECK_THROWS_AS(remesh_interior(grid), Error);
 }

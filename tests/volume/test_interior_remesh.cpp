@@ -89,6 +89,10 @@ TEST_CASE("interior remesh contract: the input itself passes, each broken remesh
     split.tets.insert(split.tets.end(), child.begin(), child.end());
   }
   REQUIRE(volmap::count_nonpositive(split.xyz, split.tets) == 0);
+  if (!split.tet_labels.empty()) {
+    CHECK(volmap::interior_remesh_problem(c.mesh, split).find("labels") != std::string::npos);  // one label per tet
+    split.tet_labels.assign(split.num_tets(), 0);
+  }
   CHECK(volmap::interior_remesh_problem(c.mesh, split).find("boundary") != std::string::npos);
 }
 

@@ -6,11 +6,17 @@
 #include <volmap/core/error.hpp>
 #include <volmap/tetgen/tetrahedralize.hpp>
 
+#include <algorithm>
 #include <cstring>
+#include <functional>
 
 namespace volmap {
 
 TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions& options) {
+  // New tets cannot take labels from parents: a labelled input keeps its one label, or is refused.
+  const bool labelled = !mesh.tet_labels.empty();
+  if (labelled && std::adjacent_find(mesh.tet_labels.begin(), mesh.tet_labels.end(), std::not_equal_to<>()) != mesh.tet_labels.end())
+    throw Error(ErrorKind::Failed, "the interior remesh would lose the input's tet labels (more than one label)");
   TriangleSurface surface;
   surface.xyz = mesh.xyz;
   for (const std::uint64_t hf : boundary_half_faces(mesh))
@@ -21,6 +27,7 @@ TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions
   const std::size_t nv = mesh.num_vertices();
   if (remeshed.num_vertices() < nv || std::memcmp(remeshed.xyz.data(), mesh.xyz.data(), 3 * nv * sizeof(double)) != 0)
     throw Error(ErrorKind::Failed, "TetGen did not keep every input vertex in place");
+  if (labelled) remeshed.tet_labels.assign(remeshed.num_tets(), mesh.tet_labels.front());
   return remeshed;
 }
 

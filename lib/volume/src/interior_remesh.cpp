@@ -36,6 +36,8 @@ std::string interior_remesh_problem(const TetMeshData& input, const TetMeshData&
   if (remeshed.xyz.size() % 3 != 0 || remeshed.tets.size() % 4 != 0 || remeshed.num_tets() == 0)
     return "the remeshed arrays are malformed or empty";
   if (remeshed.num_vertices() < nv) return "the remesh lost vertices";
+  if (!remeshed.tet_labels.empty() && remeshed.tet_labels.size() != remeshed.num_tets())
+    return "the remeshed tet labels do not match its tets";
   if (std::memcmp(remeshed.xyz.data(), input.xyz.data(), 3 * nv * sizeof(double)) != 0)
     return "the remesh moved or renumbered an input vertex";
   for (std::uint32_t v : remeshed.tets)

@@ -17,8 +17,10 @@ struct InteriorRemeshOptions {
   double quality = 3.0;
 };
 
-// Throws Error(BadInput) when the input's boundary is not a closed genus-0 surface, Error(Failed)
-// when TetGen refuses it or does not keep every input vertex in place.
+// Tet labels: a labelled input with one label gives every new tet that label. Throws
+// Error(BadInput) when the input's boundary is not a closed genus-0 surface, Error(Failed) when
+// TetGen refuses it or does not keep every input vertex in place, or the input has several labels
+// (the new tets could not carry them).
 TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions& options = {});
 
 }  // namespace volmap
