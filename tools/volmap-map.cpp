@@ -20,7 +20,7 @@
 // local FFM (Newton) on the bad region → global FFM with stall hand-over → local FFM);
 // --method tlc runs only Tutte → TLC (Du et al. 2020 baseline, judged by the same exact check).
 // With --refined-input, B0 (chord flips and splits, docs/mapping.md §4) and B1 (cone repair, §7) may refine the source,
-// and, when this build has TetGen, the last resort remeshes the interior (§8 "Interior remesh"; --no-remesh: never):
+// and, when this build has TetGen, the last resort remeshes the interior (§8 step 11; --no-remesh: never):
 // the runs from the input get half the time limit, an uncertified result the remeshed source with the rest.
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../../predicates/testing/oracle.hpp"
 #include "test_support.hpp"
 #include "map_test_meshes.hpp"
 #include "vmap_test_util.hpp"
@@ -236,19 +237,9 @@ struct FlatFloorFan {
   }
 };
 
-// Independent oracle (rationals): p and q in one open half-plane of the line ab, i.e. the normals
-// n_p = (b − a) × (p − a) and n_q = (b − a) × (q − a) are parallel (coplanar) with n_p · n_q > 0.
+// Independent oracle (GMP rationals, predicates/testing/oracle.hpp) of same_half_plane on ids.
 bool oracle_same_half_plane(const std::vector<double>& X, std::uint32_t a, std::uint32_t b, std::uint32_t p, std::uint32_t q) {
-  auto vec = [&](std::uint32_t from, std::uint32_t to) {
-    return std::array<Rational, 3>{Rational(X[3 * to]) - X[3 * from], Rational(X[3 * to + 1]) - X[3 * from + 1],
-                                   Rational(X[3 * to + 2]) - X[3 * from + 2]};
-  };
-  auto cross = [](const std::array<Rational, 3>& u, const std::array<Rational, 3>& v) {
-    return std::array<Rational, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  };
-  const auto u = vec(a, b), np = cross(u, vec(a, p)), nq = cross(u, vec(a, q)), both = cross(np, nq);
-  const Rational dot = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
-  return both[0] == 0 && both[1] == 0 && both[2] == 0 && dot > 0;
+  return volmap_oracle::same_half_plane(&X[3 * a], &X[3 * b], &X[3 * p], &X[3 * q]);
 }
 
 }  // namespace

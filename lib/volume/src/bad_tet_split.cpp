@@ -1,7 +1,6 @@
 // bad_tet_split.cpp — splitting the edges of non-positive tets (conventions in bad_tet_split.hpp).
 #include <volmap/volume/bad_tet_split.hpp>
 
-#include <volmap/core/error.hpp>
 #include <volmap/core/local_tables.hpp>
 #include <volmap/volume/chord_split.hpp>
 #include <volmap/predicates.hpp>

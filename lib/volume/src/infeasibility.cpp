@@ -118,42 +118,31 @@ bool is_boundary_face(const TetMesh& mesh, std::array<std::uint32_t, 3> abc) {
   return false;
 }
 
-// The tets around edge (a, b) in rotation order into `fan`: each as (tet, w, w') with
-// orient3d(a, b, w, w') > 0 in the source (the source tets are positive), consecutive entries sharing
-// w' = next w. An edge of ∂M gives an open chain from one boundary face to the other, an interior
-// edge a cycle (starting anywhere). False when the tets form no such chain or cycle. `unordered` is
-// scratch space (reused between calls: no allocation per edge once it has grown).
+// The tets around edge e = (a, b) in rotation order (TetMesh::edge_star_ordered) into `fan`: each as
+// (tet, w, w') with orient3d(a, b, w, w') > 0 in the source (the source tets are positive),
+// consecutive entries sharing w' = next w. An edge of ∂M gives an open chain from one boundary face
+// to the other, an interior edge a cycle (*closed). False when consecutive tets do not share their
+// ring vertex that way (not a manifold fan).
 struct FanTet {
   std::uint32_t tet, w, w_next;
 };
-bool ordered_fan(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const std::vector<TetId>& star,
-                 std::vector<FanTet>& unordered, std::vector<FanTet>& fan) {
-  unordered.clear();
+bool ordered_fan(const TetMesh& mesh, EdgeId e, std::uint32_t a, std::uint32_t b, std::vector<FanTet>& fan, bool* closed) {
   fan.clear();
   const std::vector<double>& S = mesh.positions();
-  for (TetId t : star) {
-    std::uint32_t o[2], n = 0;
+  bool two_others = true;
+  const std::pair<TetId, int> start = mesh.edge_tet(e);
+  *closed = mesh.edge_star_ordered(start.first, kTetEdge[start.second][0], kTetEdge[start.second][1], [&](TetId t) {
+    std::uint32_t o[2] = {0, 0}, n = 0;
     for (VertexId v : mesh.tet_vertices(t))
       if (v.idx() != a && v.idx() != b && n < 2) o[n++] = v.idx();
-    if (n != 2) return false;
-    if (orient3d(at(S, a), at(S, b), at(S, o[0]), at(S, o[1])) < 0) std::swap(o[0], o[1]);
-    unordered.push_back({t.idx(), o[0], o[1]});
-  }
-  if (unordered.empty()) return false;
-  // Start at the entry whose w is no entry's w_next (chain), else at the first (cycle); then follow
-  // w_next, taking each entry once (a fan has a few tens of tets: quadratic is fine).
-  std::size_t start = 0;
-  for (std::size_t i = 0; i < unordered.size(); ++i)
-    if (std::none_of(unordered.begin(), unordered.end(), [&](const FanTet& f) { return f.w_next == unordered[i].w; })) start = i;
-  std::swap(unordered[0], unordered[start]);
-  fan.push_back(unordered[0]);
-  for (std::size_t filled = 1; filled < unordered.size(); ++filled) {
-    std::size_t k = filled;
-    while (k < unordered.size() && unordered[k].w != fan.back().w_next) ++k;
-    if (k == unordered.size()) return false;
-    std::swap(unordered[filled], unordered[k]);
-    fan.push_back(unordered[filled]);
-  }
+    two_others = two_others && n == 2;
+    if (n == 2 && orient3d(at(S, a), at(S, b), at(S, o[0]), at(S, o[1])) < 0) std::swap(o[0], o[1]);
+    fan.push_back({t.idx(), o[0], o[1]});
+  });
+  if (!two_others || fan.empty()) return false;
+  if (fan.size() > 1 && fan[0].w_next != fan[1].w) std::reverse(fan.begin(), fan.end());  // walked the other way
+  for (std::size_t i = 1; i < fan.size(); ++i)
+    if (fan[i - 1].w_next != fan[i].w) return false;
   return true;
 }
 
@@ -260,16 +249,14 @@ class CertificateSearch {
   void wrapping_edge_fans() {
     if (full()) return;
     int embedded = -1;  // not tested yet
-    std::vector<TetId> star;
-    std::vector<FanTet> unordered, fan;
+    std::vector<FanTet> fan;
     std::vector<std::size_t> locked_at;  // positions in `fan` whose w is locked
     for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
       const auto ends = mesh_.edge_vertices(EdgeId(e));
       const std::uint32_t a = ends[0].idx(), b = ends[1].idx();
       if (!locked_[a] || !locked_[b] || points_equal(at(X_, a), at(X_, b))) continue;
-      star.clear();
-      const bool closed = mesh_.edge_star(EdgeId(e), [&](TetId t) { star.push_back(t); });
-      if (!ordered_fan(mesh_, a, b, star, unordered, fan)) continue;
+      bool closed = false;
+      if (!ordered_fan(mesh_, EdgeId(e), a, b, fan, &closed)) continue;
       // The ring in fan order; a cycle is walked twice so that a segment may pass its start.
       locked_at.clear();
       const std::size_t n = fan.size(), walk = closed ? 2 * n : n;

@@ -3,7 +3,7 @@
 // analyze_topology of both meshes, which also refuses non-manifold results), signs by orient3d_tets.
 #include <volmap/volume/interior_remesh.hpp>
 
-#include <volmap/core/local_tables.hpp>
+#include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/topology.hpp>
 #include <volmap/predicates.hpp>
 
@@ -20,8 +20,7 @@ std::vector<std::array<std::uint32_t, 3>> sorted_boundary_triangles(const TetMes
   std::vector<std::array<std::uint32_t, 3>> tris;
   tris.reserve(topo.boundary_half_faces.size());
   for (const std::uint32_t hf : topo.boundary_half_faces) {
-    std::array<std::uint32_t, 3> f;
-    for (int k = 0; k < 3; ++k) f[std::size_t(k)] = mesh.tets[4 * std::size_t(hf / 4) + kTetFace[hf % 4][k]];
+    std::array<std::uint32_t, 3> f = half_face_vertices(mesh, hf);
     std::sort(f.begin(), f.end());
     tris.push_back(f);
   }

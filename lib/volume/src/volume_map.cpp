@@ -559,17 +559,15 @@ bool worth_a_restart(const VolumeMapResult& r, const VolumeMapOptions& options, 
   return options.allow_refinement || r.infeasibility.empty();
 }
 
-// The certified run, else the one with fewer non-positive tets (the first on a tie); its stage list
-// follows the other's, so the result shows all the work done.
-VolumeMapResult better_of_two_starts(VolumeMapResult first, VolumeMapResult second, double seconds) {
+// The certified run, else the one with fewer non-positive tets (the first on a tie). Its stage list
+// is the first run's, `separator`, then the second run's, so the result shows all the work done.
+VolumeMapResult better_run(VolumeMapResult first, VolumeMapResult second, const VolumeMapStage& separator, double seconds) {
   const bool second_wins = second.certified || (!first.certified && second.nonpositive < first.nonpositive);
-  const std::size_t input_tets = first.input_tets, first_bad = first.nonpositive;
   std::vector<VolumeMapStage> stages = std::move(first.stages);
-  stages.push_back({"restart", 0, first_bad, input_tets, ""});  // the first run's count; the input again
+  stages.push_back(separator);
   stages.insert(stages.end(), second.stages.begin(), second.stages.end());
   VolumeMapResult& kept = second_wins ? second : first;
   kept.stages = std::move(stages);
-  kept.restarted = true;
   kept.seconds = seconds;
   return std::move(kept);
 }
@@ -586,7 +584,10 @@ VolumeMapResult map_from_both_starts(const TetMeshData& input, const BoundaryMap
   if (total.limited()) again.time_limit_seconds = total.remaining();
   try {
     VolumeMapResult second = run_mapper(input, map, again, prepared.get());
-    return better_of_two_starts(std::move(first), std::move(second), total.elapsed());
+    const VolumeMapStage restart{"restart", 0, first.nonpositive, first.input_tets, ""};  // the first run's count; the input again
+    VolumeMapResult kept = better_run(std::move(first), std::move(second), restart, total.elapsed());
+    kept.restarted = true;
+    return kept;
   } catch (const Error& e) {  // the restart failed internally: the first run's result stands
     first.stages.push_back({"restart", 0, first.nonpositive, first.input_tets, e.reason()});
     first.seconds = total.elapsed();
@@ -638,14 +639,8 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
   second.infeasibility = first.infeasibility;
   second.refined = true;
   second.remeshed = true;
-  const bool second_wins = second.certified || (!first.certified && second.nonpositive < first.nonpositive);
-  std::vector<VolumeMapStage> stages = std::move(first.stages);
-  stages.push_back({"remesh", remesh_seconds, first.nonpositive, remeshed.num_tets(), ""});
-  stages.insert(stages.end(), second.stages.begin(), second.stages.end());
-  VolumeMapResult& kept = second_wins ? second : first;
-  kept.stages = std::move(stages);
-  kept.seconds = total.elapsed();
-  return std::move(kept);
+  const VolumeMapStage remesh{"remesh", remesh_seconds, first.nonpositive, remeshed.num_tets(), ""};
+  return better_run(std::move(first), std::move(second), remesh, total.elapsed());
 }
 
 }  // namespace

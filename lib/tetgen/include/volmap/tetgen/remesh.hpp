@@ -13,7 +13,7 @@ namespace volmap {
 struct InteriorRemeshOptions {
   // TetGen's radius-edge bound. A loose bound adds few points: on coarse TetGen meshes without
   // quality refinement (most tets with four boundary vertices) 3.0 changed the tet count by −8 % to
-  // +12 % and gave every untangler interior vertices to move (docs/mapping.md §8 "Interior remesh").
+  // +12 % and gave every untangler interior vertices to move (docs/mapping.md §8 step 11).
   double quality = 3.0;
 };
 

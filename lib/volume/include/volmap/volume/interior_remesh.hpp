@@ -1,5 +1,5 @@
 // volmap/volume/interior_remesh.hpp — the last resort of a mapper allowed to refine: a new
-// tetrahedralisation of the source's interior (docs/mapping.md §8 "Interior remesh").
+// tetrahedralisation of the source's interior (docs/mapping.md §8 step 11).
 // Contract of a remesher: it returns a tet mesh of the same solid whose boundary triangles are the
 // input's (same vertex ids, as a set of faces), whose vertices 0..nv−1 are the input's vertices at
 // bit-identical positions, with any new vertex appended in the interior, and whose tets are all
