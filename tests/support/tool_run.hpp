@@ -37,6 +37,14 @@
 
 namespace volmap_test {
 
+// How much slower the tools run under the sanitizers, loaded by a parallel ctest: a test whose
+// verdict depends on what a run reaches within --time-limit scales its limit by this.
+#ifdef VOLMAP_TEST_ASAN
+constexpr double kToolSlowdown = 4;
+#else
+constexpr double kToolSlowdown = 1;
+#endif
+
 struct RunResult {
   bool signaled = false;
   int signal = 0;
