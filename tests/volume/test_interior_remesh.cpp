@@ -1,7 +1,7 @@
 // The interior-remesh last resort of the mapper (volume_map.hpp, interior_remesh.hpp): the exact
 // contract check refuses every broken remesh, the remesher is asked only when the runs from the
-// input end uncertified with refinement allowed, a refused or failing remesh leaves the first result
-// standing (never an exception, never the user's bad input), and a remeshed result reports growth
+// input end uncertified with refinement allowed, a refused or failing remesh is a failed stage after
+// which the time left continues the first result (never an exception, never the user's bad input), and a remeshed result reports growth
 // against the input. The remeshers here are plain functions, so no mesher is needed.
 #include <doctest/doctest.h>
 
@@ -148,7 +148,7 @@ TEST_CASE("interior remesh: an uncertified start hands the rest of the limit to 
     for (int i = 0; i < 3; ++i) CHECK(r.target_xyz[3 * c.map.vids[k] + std::size_t(i)] == c.map.xyz[3 * k + std::size_t(i)]);
 }
 
-TEST_CASE("interior remesh: a refused or throwing remesher leaves the first result, as a failed stage") {
+TEST_CASE("interior remesh: a refused or throwing remesher is a failed stage; the time left continues the first run") {
   const auto c = affine_case(6);
   volmap::VolumeMapOptions opt;
   opt.time_limit_seconds = 5;
@@ -168,6 +168,14 @@ TEST_CASE("interior remesh: a refused or throwing remesher leaves the first resu
     CHECK(stage->failure.find("remesh refused") != std::string::npos);
     CHECK(r.source.num_vertices() >= c.mesh.num_vertices());
     CHECK(r.source.xyz[0] == c.mesh.xyz[0]);
+    // The runs from the input stopped at once on the tangled start; the continuation from their
+    // map, with the rest of the 5 s, untangles it on the (unremeshed) source.
+    CHECK(stage->nonpositive_after > 0);
+    CHECK(r.certified);
+    CHECK(volmap::count_nonpositive(r.target_xyz, r.source.tets) == 0);
+    CHECK(r.input_tets == c.mesh.num_tets());
+    const auto after = std::find_if(r.stages.begin(), r.stages.end(), [](const auto& s) { return s.name == "remesh"; });
+    CHECK(std::next(after) != r.stages.end());  // the continuation's stages follow the failed remesh
   }
   SUBCASE("the mesher throws") {
     opt.remesh_interior = [](const volmap::TetMeshData&) -> volmap::TetMeshData { throw std::runtime_error("mesher down"); };
@@ -176,5 +184,6 @@ TEST_CASE("interior remesh: a refused or throwing remesher leaves the first resu
     const auto* stage = find_stage(r, "remesh");
     REQUIRE(stage != nullptr);
     CHECK(stage->failure.find("mesher down") != std::string::npos);
+    CHECK(r.certified);
   }
 }

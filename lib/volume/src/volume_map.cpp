@@ -602,16 +602,51 @@ bool worth_a_remesh(const VolumeMapResult& r, const TimeBudget& total) {
   return !total.limited() || total.remaining() >= kMinRestartShare * total.limit_seconds();
 }
 
+// The time left after a failed remesh goes on from where the runs from the input stopped: their
+// (refined) source and map are the input and the initial map of one more run, whose growth budgets
+// are what is left of the input's. Returns the better of the two (growth, input counts and the
+// feasibility report of the input); `first` stands if the continuation fails.
+VolumeMapResult continue_first_run(VolumeMapResult first, const BoundaryMap& map, const VolumeMapOptions& options,
+                                   const TimeBudget& total, const VolumeMapStage& failed_remesh) {
+  auto keep_first = [&](const std::string& why) {
+    first.stages.push_back(failed_remesh);
+    if (!why.empty()) first.stages.push_back({"continue", 0, first.nonpositive, first.source.num_tets(), why});
+    first.seconds = total.elapsed();
+    return std::move(first);
+  };
+  if (!worth_a_remesh(first, total)) return keep_first("");
+  VolumeMapOptions again = options;
+  again.remesh_interior = nullptr;
+  again.restart_share = 1;
+  again.initial_xyz = first.target_xyz;
+  const double input_tets = double(first.input_tets), tets_now = double(first.source.num_tets());
+  auto budget_left = [&](double fraction) { return std::max(0.0, (1 + fraction) * input_tets / tets_now - 1); };
+  again.max_growth = budget_left(options.max_growth);
+  again.max_growth_last_resort = std::max(again.max_growth, budget_left(options.max_growth_last_resort));
+  if (total.limited()) again.time_limit_seconds = total.remaining();
+  VolumeMapResult second;
+  try {
+    second = map_from_both_starts(first.source, map, again);
+  } catch (const Error& e) {
+    return keep_first("continuing the runs from the input failed: " + e.reason());
+  }
+  second.input_tets = first.input_tets;
+  second.input_vertices = first.input_vertices;
+  second.feasibility = first.feasibility;
+  second.infeasibility = first.infeasibility;
+  second.refined = true;
+  return better_run(std::move(first), std::move(second), failed_remesh, total.elapsed());
+}
+
 // Maps the remeshed source with the time left; returns the better of `first` and that run (growth,
 // input counts and the feasibility report of the input). A remesh that fails or breaks its contract
-// is a stage failure: `first` stands.
+// is a stage failure: the time left continues the runs from the input (continue_first_run).
 VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& input, const BoundaryMap& map,
                                      const VolumeMapOptions& options, const TimeBudget& total) {
   const TimeBudget remesh_clock;
   auto keep_first = [&](const std::string& why) {
-    first.stages.push_back({"remesh", remesh_clock.elapsed(), first.nonpositive, first.source.num_tets(), why});
-    first.seconds = total.elapsed();
-    return std::move(first);
+    const VolumeMapStage failed{"remesh", remesh_clock.elapsed(), first.nonpositive, first.source.num_tets(), why};
+    return continue_first_run(std::move(first), map, options, total, failed);
   };
   TetMeshData remeshed;
   std::string problem;

@@ -113,8 +113,11 @@ struct VolumeMapOptions {
   // set, the runs from the input get remesh_share of the time limit; when they end uncertified
   // (and no certificate rules out every map) with at least a tenth of the limit left, the remeshed
   // source, once interior_remesh_problem accepts it, is mapped with the time left (from Tutte 3D),
-  // and the certified run, else the one with fewer non-positive tets, is returned. Growth and the
-  // feasibility report always refer to the input (docs/mapping.md §8 step 11).
+  // and the certified run, else the one with fewer non-positive tets, is returned. A remesh that
+  // fails or is refused hands the time left to one more run from where the runs from the input
+  // stopped (their source and map as its input and initial map, within what is left of the growth
+  // budgets). Growth and the feasibility report always refer to the input (docs/mapping.md §8
+  // step 11).
   InteriorRemesher remesh_interior;
   double remesh_share = 0.5;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
