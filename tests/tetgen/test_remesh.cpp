@@ -1,7 +1,8 @@
 // remesh_interior (volmap/tetgen/remesh.hpp): TetGen's new interior keeps every input vertex (interior
 // ones included) at its id and bit-identical position and the boundary triangles as they are —
 // checked by the mapper's own exact contract check (interior_remesh_problem) and by counts — and on
-// a coarse mesh without interior vertices it adds interior points.
+// a coarse mesh without interior vertices it adds interior points. Where TetGen aborts on the
+// boundary PLC (the coarse fish of the thin shapes), the input's tets are refined instead.
 #include <doctest/doctest.h>
 
 #include <volmap/core/boundary_faces.hpp>
@@ -11,6 +12,10 @@
 #include <volmap/tetgen/tetrahedralize.hpp>
 #include <volmap/testing/generate.hpp>
 #include <volmap/volume/interior_remesh.hpp>
+
+#ifdef VOLMAP_TEST_THIN_SHAPES
+#include "support/shapes.hpp"
+#endif
 
 #include <algorithm>
 
@@ -69,3 +74,21 @@ TEST_CASE("remesh_interior keeps a single tet label and refuses several") {
   grid.tet_labels[3] = 8;
   CHECK_THROWS_AS(remesh_interior(grid), Error);
 }
+
+#ifdef VOLMAP_TEST_THIN_SHAPES
+TEST_CASE("remesh_interior: where TetGen aborts on the boundary PLC, the input's tets are refined instead") {
+  // The fish of the thin shapes, tetrahedralised without quality refinement (volmap-tetrahedralize
+  // --coarse): TetGen's boundary recovery aborts on its PLC with the interior points at every
+  // quality bound, so this remesh used to throw.
+  const SurfaceData fish = make_builtin_shape("fins");
+  TriangleSurface surface;
+  surface.xyz = fish.xyz;
+  surface.tris = fish.tris;
+  TetrahedralizeOptions coarse;
+  coarse.coarse = true;
+  const TetMeshData mesh = tetrahedralize_surface(surface, coarse);
+  const TetMeshData remeshed = remesh_interior(mesh);
+  CHECK(interior_remesh_problem(mesh, remeshed) == "");
+  CHECK(interior_vertex_count(remeshed) > interior_vertex_count(mesh));
+}
+#endif
