@@ -602,6 +602,16 @@ bool worth_a_remesh(const VolumeMapResult& r, const TimeBudget& total) {
   return !total.limited() || total.remaining() >= kMinRestartShare * total.limit_seconds();
 }
 
+// A later run on a refined or remeshed source reports growth, input counts and the feasibility
+// report of the input, as `first` (a run from the input) does.
+void report_against_input(VolumeMapResult& later, const VolumeMapResult& first) {
+  later.input_tets = first.input_tets;
+  later.input_vertices = first.input_vertices;
+  later.feasibility = first.feasibility;
+  later.infeasibility = first.infeasibility;
+  later.refined = true;
+}
+
 // The time left after a failed remesh goes on from where the runs from the input stopped: their
 // (refined) source and map are the input and the initial map of one more run, whose growth budgets
 // are what is left of the input's. Returns the better of the two (growth, input counts and the
@@ -630,11 +640,7 @@ VolumeMapResult continue_first_run(VolumeMapResult first, const BoundaryMap& map
   } catch (const Error& e) {
     return keep_first("continuing the runs from the input failed: " + e.reason());
   }
-  second.input_tets = first.input_tets;
-  second.input_vertices = first.input_vertices;
-  second.feasibility = first.feasibility;
-  second.infeasibility = first.infeasibility;
-  second.refined = true;
+  report_against_input(second, first);
   return better_run(std::move(first), std::move(second), failed_remesh, total.elapsed());
 }
 
@@ -668,11 +674,7 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
   } catch (const Error& e) {
     return keep_first("mapping the remeshed source failed: " + e.reason());
   }
-  second.input_tets = first.input_tets;
-  second.input_vertices = first.input_vertices;
-  second.feasibility = first.feasibility;
-  second.infeasibility = first.infeasibility;
-  second.refined = true;
+  report_against_input(second, first);
   second.remeshed = true;
   const VolumeMapStage remesh{"remesh", remesh_seconds, first.nonpositive, remeshed.num_tets(), ""};
   return better_run(std::move(first), std::move(second), remesh, total.elapsed());
