@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-remesh", no_remesh,
                "refinement: never remesh the interior (default, when built with TetGen: runs from the input get half the time "
                "limit; if they end uncertified, the interior is re-tetrahedralised keeping the boundary and every input "
-               "vertex, and mapped with the rest)");
+               "vertex, and mapped with the rest; when TetGen refuses, the rest continues the runs from the input)");
   app.add_option("--remesh-quality", remesh_quality, "refinement: TetGen radius-edge bound of the interior remesh (default 3)")
       ->check(volmap_tools::finite_range(1.0, 1e6));
   app.add_flag("--no-quality", no_quality, "skip the validity-preserving quality pass");
