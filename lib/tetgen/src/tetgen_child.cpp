@@ -33,79 +33,64 @@ std::string tetgen_reason(int code) {
   }
 }
 
-}  // namespace
-
-TetMeshData run_tetgen_in_child(const std::string& switches_in, tetgenio& in) {
-  std::string switches = switches_in;  // tetrahedralize() takes a mutable string
+// The child: runs TetGen and writes to `fd` a header {error code, points, tets}, then the points
+// (3 doubles each) and the 0-based tet ids (4 int32 each). Never returns.
+[[noreturn]] void tetgen_child(int fd, std::string switches, tetgenio& in) {
+  const int null_fd = open("/dev/null", O_WRONLY);
+  if (null_fd >= 0) dup2(null_fd, 1), dup2(null_fd, 2);
+  auto write_all = [fd](const void* data, std::size_t bytes) {
+    const char* p = static_cast<const char*>(data);
+    while (bytes > 0) {
+      const ssize_t w = write(fd, p, bytes);
+      if (w <= 0) _exit(99);
+      p += w;
+      bytes -= static_cast<std::size_t>(w);
+    }
+  };
   tetgenio out;
-  // TetGen runs in a child process: Debian's libtet frees its pools twice when it throws an error
-  // (terminatetetgen() frees, then the unwinding destructor frees again), which crashes the whole
-  // process on bad input (typically self-intersecting surfaces). The child sends the result through a
-  // pipe; a crash or an error code becomes Error(Failed) here.
-  int fds[2];
-  if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "cannot create a pipe for TetGen");
-  std::fflush(stdout);
-  std::fflush(stderr);
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(fds[0]);
-    close(fds[1]);
-    throw Error(ErrorKind::Failed, "cannot fork for TetGen");
+  std::int64_t header[3] = {0, 0, 0};
+  try {
+    tetrahedralize(&switches[0], &in, &out);
+  } catch (int code) {
+    header[0] = code;
+  } catch (...) {
+    header[0] = 2;
   }
-  if (pid == 0) {
-    close(fds[0]);
-    const int null_fd = open("/dev/null", O_WRONLY);
-    if (null_fd >= 0) dup2(null_fd, 1), dup2(null_fd, 2);
-    auto write_all = [&](const void* data, std::size_t bytes) {
-      const char* p = static_cast<const char*>(data);
-      while (bytes > 0) {
-        const ssize_t w = write(fds[1], p, bytes);
-        if (w <= 0) _exit(99);
-        p += w;
-        bytes -= static_cast<std::size_t>(w);
-      }
-    };
-    std::int64_t header[3] = {0, 0, 0};
-    try {
-      tetrahedralize(&switches[0], &in, &out);
-    } catch (int code) {
-      header[0] = code;
-      write_all(header, sizeof header);
-      _exit(3);
-    } catch (...) {
-      header[0] = 2;
-      write_all(header, sizeof header);
-      _exit(3);
-    }
-    header[1] = out.numberofpoints;
-    header[2] = out.numberofcorners == 4 ? out.numberoftetrahedra : 0;
+  if (header[0] != 0) {
     write_all(header, sizeof header);
-    write_all(out.pointlist, sizeof(REAL) * 3 * static_cast<std::size_t>(header[1]));
-    for (std::int64_t i = 0; i < 4 * header[2]; ++i) {
-      const std::int32_t id = out.tetrahedronlist[i] - out.firstnumber;
-      write_all(&id, sizeof id);
-    }
-    _exit(0);
+    _exit(3);
   }
-  close(fds[1]);
+  header[1] = out.numberofpoints;
+  header[2] = out.numberofcorners == 4 ? out.numberoftetrahedra : 0;
+  write_all(header, sizeof header);
+  write_all(out.pointlist, sizeof(REAL) * 3 * static_cast<std::size_t>(header[1]));
+  for (std::int64_t i = 0; i < 4 * header[2]; ++i) {
+    const std::int32_t id = out.tetrahedronlist[i] - out.firstnumber;
+    write_all(&id, sizeof id);
+  }
+  _exit(0);
+}
+
+std::vector<char> read_until_closed(int fd) {
   std::vector<char> bytes;
-  {
-    char buffer[1 << 16];
-    for (;;) {
-      const ssize_t r = read(fds[0], buffer, sizeof buffer);
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) break;
-      bytes.insert(bytes.end(), buffer, buffer + r);
-    }
-    close(fds[0]);
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t r = read(fd, buffer, sizeof buffer);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) break;
+    bytes.insert(bytes.end(), buffer, buffer + r);
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  close(fd);
+  return bytes;
+}
+
+// The child's bytes as a mesh, each tet checked exactly and turned VOLMAP-positive (TetGen's are all
+// negative in that convention).
+TetMeshData decode_child_output(const std::vector<char>& bytes, bool crashed) {
   std::int64_t header[3] = {-1, 0, 0};
   if (bytes.size() >= sizeof header) std::memcpy(header, bytes.data(), sizeof header);
   if (header[0] > 0) throw Error(ErrorKind::Failed, tetgen_reason(static_cast<int>(header[0])));
-  if (WIFSIGNALED(status) || header[0] < 0)
+  if (crashed || header[0] < 0)
     throw Error(ErrorKind::Failed, "TetGen aborted on this surface (libtet aborts while cleaning up after an internal "
                 "error; its fixed tolerances reject near-degenerate or badly scaled features)");
   const std::size_t np = static_cast<std::size_t>(header[1]), ntet = static_cast<std::size_t>(header[2]);
@@ -119,7 +104,6 @@ TetMeshData run_tetgen_in_child(const std::string& switches_in, tetgenio& in) {
   m.tets.resize(4 * ntet);
   m.tet_labels.assign(ntet, 0);
   const char* ids = bytes.data() + sizeof header + 24 * np;
-  std::size_t flipped = 0;
   for (std::size_t t = 0; t < ntet; ++t) {
     std::uint32_t* q = &m.tets[4 * t];
     for (int k = 0; k < 4; ++k) {
@@ -131,13 +115,38 @@ TetMeshData run_tetgen_in_child(const std::string& switches_in, tetgenio& in) {
     }
     const int sgn = orient3d(&m.xyz[3 * q[0]], &m.xyz[3 * q[1]], &m.xyz[3 * q[2]], &m.xyz[3 * q[3]]);
     if (sgn == 0) throw Error(ErrorKind::Failed, "TetGen produced a degenerate tet " + std::to_string(t));
-    if (sgn < 0) {
-      std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive
-      ++flipped;
-    }
+    if (sgn < 0) std::swap(q[0], q[1]);  // odd permutation: VOLMAP-positive
   }
-  (void)flipped;  // TetGen's tets are all negative in the VOLMAP convention: every one is flipped
   return m;
+}
+
+}  // namespace
+
+// Debian's libtet frees its pools twice when it throws an error (terminatetetgen() frees, then the
+// unwinding destructor frees again), which crashes the whole process on bad input (typically
+// self-intersecting surfaces). So TetGen runs in a child that sends its result through a pipe; a
+// crash or an error code becomes Error(Failed) here.
+TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in) {
+  int fds[2];
+  if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "cannot create a pipe for TetGen");
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    throw Error(ErrorKind::Failed, "cannot fork for TetGen");
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    tetgen_child(fds[1], switches, in);
+  }
+  close(fds[1]);
+  const std::vector<char> bytes = read_until_closed(fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return decode_child_output(bytes, WIFSIGNALED(status));
 }
 
 }  // namespace volmap
