@@ -1,8 +1,9 @@
 // The interior-remesh last resort of the mapper (volume_map.hpp, interior_remesh.hpp): the exact
 // contract check refuses every broken remesh, the remesher is asked only when the runs from the
 // input end uncertified with refinement allowed, a refused or failing remesh is a failed stage after
-// which the time left continues the first result (never an exception, never the user's bad input), and a remeshed result reports growth
-// against the input. The remeshers here are plain functions, so no mesher is needed.
+// which the time left continues the first result (never an exception, never the user's bad input),
+// and a remeshed result reports growth against the input. The remeshers here are plain functions,
+// so no mesher is needed.
 #include <doctest/doctest.h>
 
 #include <volmap/predicates.hpp>
