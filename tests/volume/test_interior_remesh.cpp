@@ -177,6 +177,7 @@ TEST_CASE("interior remesh: a refused or throwing remesher is a failed stage; th
     CHECK(r.input_tets == c.mesh.num_tets());
     const auto after = std::find_if(r.stages.begin(), r.stages.end(), [](const auto& s) { return s.name == "remesh"; });
     CHECK(std::next(after) != r.stages.end());  // the continuation's stages follow the failed remesh
+    CHECK(r.refined == (r.source.tets != c.mesh.tets || r.source.xyz != c.mesh.xyz));  // refined iff changed
   }
   SUBCASE("the mesher throws") {
     opt.remesh_interior = [](const volmap::TetMeshData&) -> volmap::TetMeshData { throw std::runtime_error("mesher down"); };

@@ -595,21 +595,23 @@ VolumeMapResult map_from_both_starts(const TetMeshData& input, const BoundaryMap
   }
 }
 
-// Runs from the input that ended uncertified get the remeshed source when the map may exist at
-// some refinement and at least kMinRestartShare of the limit is left.
-bool worth_a_remesh(const VolumeMapResult& r, const TimeBudget& total) {
+// An uncertified result gets another run (on the remeshed source, or continuing after a refused
+// remesh) when the map may exist at some refinement and at least kMinRestartShare of the limit is
+// left.
+bool worth_another_run(const VolumeMapResult& r, const TimeBudget& total) {
   if (r.certified || r.feasibility.infeasible_with_any_refinement()) return false;
   return !total.limited() || total.remaining() >= kMinRestartShare * total.limit_seconds();
 }
 
-// A later run on a refined or remeshed source reports growth, input counts and the feasibility
-// report of the input, as `first` (a run from the input) does.
+// A later run on first's (refined) source or a remeshed one reports growth, input counts and the
+// feasibility report of the input, as `first` (a run from the input) does; it is refined when
+// either run refined.
 void report_against_input(VolumeMapResult& later, const VolumeMapResult& first) {
   later.input_tets = first.input_tets;
   later.input_vertices = first.input_vertices;
   later.feasibility = first.feasibility;
   later.infeasibility = first.infeasibility;
-  later.refined = true;
+  later.refined = later.refined || first.refined;
 }
 
 // The time left after a failed remesh goes on from where the runs from the input stopped: their
@@ -624,7 +626,7 @@ VolumeMapResult continue_first_run(VolumeMapResult first, const BoundaryMap& map
     first.seconds = total.elapsed();
     return std::move(first);
   };
-  if (!worth_a_remesh(first, total)) return keep_first("");
+  if (!worth_another_run(first, total)) return keep_first("");
   VolumeMapOptions again = options;
   again.remesh_interior = nullptr;
   again.restart_share = 1;
@@ -675,7 +677,7 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
     return keep_first("mapping the remeshed source failed: " + e.reason());
   }
   report_against_input(second, first);
-  second.remeshed = true;
+  second.refined = second.remeshed = true;
   const VolumeMapStage remesh{"remesh", remesh_seconds, first.nonpositive, remeshed.num_tets(), ""};
   return better_run(std::move(first), std::move(second), remesh, total.elapsed());
 }
@@ -695,7 +697,7 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   VolumeMapOptions from_input = options;
   if (remesh && total.limited()) from_input.time_limit_seconds = options.remesh_share * total.limit_seconds();
   VolumeMapResult first = map_from_both_starts(input, map, from_input);  // validates the input (Error(BadInput))
-  if (!remesh || !worth_a_remesh(first, total)) return first;
+  if (!remesh || !worth_another_run(first, total)) return first;
   return with_remeshed_source(std::move(first), input, map, options, total);
 }
 
