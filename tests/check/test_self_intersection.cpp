@@ -334,7 +334,7 @@ TEST_CASE("randomized: the accelerated driver finds exactly the brute-force pair
     s.t(c[0], c[1], c[2]);
   }
   const std::size_t n = s.tris.size() / 3;
-  std::size_t brute = 0;
+  std::size_t brute = 0, overlapping = 0;
   std::vector<volmap::TrianglePair> first;
   std::vector<char> degenerate(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -343,6 +343,7 @@ TEST_CASE("randomized: the accelerated driver finds exactly the brute-force pair
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       if (degenerate[i] || degenerate[j] || !boxes_overlap(s, i, j)) continue;
+      ++overlapping;
       if (volmap::triangle_pair_intersects(s.xyz.data(), &s.tris[3 * i], &s.tris[3 * j])) {
         ++brute;
         if (first.size() < 5) first.push_back({std::uint32_t(i), std::uint32_t(j)});
@@ -355,6 +356,7 @@ TEST_CASE("randomized: the accelerated driver finds exactly the brute-force pair
     const auto r = find_self_intersections(s.xyz, s.tris, options);
     CHECK(r.intersecting_pairs == brute);
     CHECK(r.first_pairs == first);
+    CHECK(r.candidate_pairs == overlapping);      // every box-overlapping pair visited exactly once
     CHECK(r.candidate_pairs < n * (n - 1) / 50);  // the hierarchy prunes
   }
   MESSAGE(n << " triangles, " << brute << " intersecting pairs");

@@ -1,10 +1,10 @@
 // self_intersection.cpp — exact triangle-surface self-intersection test (see self_intersection.hpp).
 //
 // Pipeline: validate ids/coordinates; flag degenerate triangles; find coincident vertices by sorting
-// positions; build the flat bounding-volume hierarchy of box_tree.hpp over the triangle boxes; for
-// every triangle, in parallel blocks, query it for the triangles after it (in tree order) whose
-// closed boxes overlap and run the exact pair test chosen by how many vertex ids the two share. Box
-// tests compare doubles only (exact); every sign is an exact orient3d/orient2d, called unchecked
+// positions; build the flat bounding-volume hierarchy of box_tree.hpp over the triangle boxes;
+// descend the tree against itself (split into tasks run in parallel) to every pair of triangles whose
+// closed boxes overlap, once each, and run the exact pair test chosen by how many vertex ids the two
+// share. Box tests compare doubles only (exact); every sign is an exact orient3d/orient2d, called unchecked
 // inside one FpEnvironmentScope per block of work (one MXCSR check per block instead of per call;
 // predicates.hpp).
 //
@@ -187,6 +187,103 @@ void keep_smallest(std::vector<TrianglePair>& list, std::size_t cap) {
   if (list.size() > cap) list.resize(cap);
 }
 
+
+// ---------------------------------------------------------------- tree-against-itself traversal
+// Every pair of items whose boxes overlap is found once by descending the tree against itself:
+// a node's own pairs are its children's own pairs plus the pairs across them, and two nodes whose
+// boxes are disjoint have no pair across them. A task is one such unit of work, `self` (pairs inside
+// node a) or `across` (pairs with one item in a, one in b).
+struct NodeTask {
+  std::uint32_t a, b;
+  bool self;
+};
+
+inline std::uint32_t node_size(const BoxTree::Node& n) { return n.end - n.begin; }
+
+// Expands the root's task breadth-first into at least `wanted` tasks (fewer when the tree runs out),
+// in a fixed order, so the parallel drivers' results merge deterministically.
+std::vector<NodeTask> split_traversal(const BoxTree& tree, std::size_t wanted) {
+  std::vector<NodeTask> tasks;
+  if (tree.nodes.empty()) return tasks;
+  tasks.push_back({0, 0, true});
+  while (tasks.size() < wanted) {
+    std::vector<NodeTask> next;
+    next.reserve(3 * tasks.size());
+    bool expanded = false;
+    for (const NodeTask& task : tasks) {
+      const BoxTree::Node& a = tree.nodes[task.a];
+      const BoxTree::Node& b = tree.nodes[task.b];
+      if (task.self) {
+        if (a.left == 0) {
+          next.push_back(task);
+          continue;
+        }
+        next.push_back({a.left, a.left, true});
+        next.push_back({a.left + 1, a.left + 1, true});
+        next.push_back({a.left, a.left + 1, false});
+        expanded = true;
+        continue;
+      }
+      if (!boxes_overlap(a.box, b.box)) continue;
+      if (a.left == 0 && b.left == 0) {
+        next.push_back(task);
+        continue;
+      }
+      const bool split_a = b.left == 0 || (a.left != 0 && node_size(a) >= node_size(b));
+      const std::uint32_t child = split_a ? a.left : b.left;
+      for (std::uint32_t c : {child, child + 1}) next.push_back(split_a ? NodeTask{c, task.b, false} : NodeTask{task.a, c, false});
+      expanded = true;
+    }
+    tasks.swap(next);
+    if (!expanded) break;
+  }
+  return tasks;
+}
+
+// Calls visit(item, item) for every pair of distinct items under the task whose leaf boxes overlap.
+template <class Visit>
+void run_traversal(const BoxTree& tree, const NodeTask& root, Visit&& visit) {
+  NodeTask stack[192];  // a self task pushes 3, an across task 2, per level of a depth far below 64
+  int top = 0;
+  stack[top++] = root;
+  while (top > 0) {
+    const NodeTask task = stack[--top];
+    const BoxTree::Node& a = tree.nodes[task.a];
+    if (task.self) {
+      if (a.left != 0) {
+        stack[top++] = {a.left, a.left + 1, false};
+        stack[top++] = {a.left + 1, a.left + 1, true};
+        stack[top++] = {a.left, a.left, true};
+        continue;
+      }
+      for (std::uint32_t i = a.begin; i < a.end; ++i)
+        for (std::uint32_t j = i + 1; j < a.end; ++j)
+          if (boxes_overlap(tree.leaf_boxes[i], tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
+      continue;
+    }
+    const BoxTree::Node& b = tree.nodes[task.b];
+    if (!boxes_overlap(a.box, b.box)) continue;
+    if (a.left == 0 && b.left == 0) {
+      for (std::uint32_t i = a.begin; i < a.end; ++i) {
+        const Box3& box = tree.leaf_boxes[i];
+        if (!boxes_overlap(box, b.box)) continue;
+        for (std::uint32_t j = b.begin; j < b.end; ++j)
+          if (boxes_overlap(box, tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
+      }
+      continue;
+    }
+    const bool split_a = b.left == 0 || (a.left != 0 && node_size(a) >= node_size(b));
+    if (split_a) {
+      stack[top++] = {a.left + 1, task.b, false};
+      stack[top++] = {a.left, task.b, false};
+    } else {
+      stack[top++] = {task.a, b.left + 1, false};
+      stack[top++] = {task.a, b.left, false};
+    }
+  }
+}
+
+constexpr std::size_t kParallelTasks = 64;
 }  // namespace
 
 // ------------------------------------------------------------------ public primitives ----------
@@ -330,57 +427,32 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   }
 
   const BoxTree bvh = build_box_tree(boxes);
-
-  // Query every triangle against the triangles after it in BVH leaf order ("position"): a node whose
-  // positions all come before the query's is skipped, which halves the traversal and keeps queries
-  // spatially coherent. Pairs are reported by triangle ids (smaller first).
-  constexpr std::size_t kBlock = 1024;
-  const std::size_t num_blocks = (num_tris + kBlock - 1) / kBlock;
-  std::vector<BlockResult> blocks(num_blocks);
-  auto run_block = [&](std::size_t block) {
-    BlockResult& out = blocks[block];
-    const FpEnvironmentScope fp;  // one MXCSR check per block of queries (per thread)
-    std::uint32_t stack[96];
-    const std::size_t end = std::min(num_tris, (block + 1) * kBlock);
-    for (std::size_t position = block * kBlock; position < end; ++position) {
-      const std::uint32_t t = bvh.order[position];
-      if (degenerate[t]) continue;
-      const Box3& query = bvh.leaf_boxes[position];
-      const std::uint32_t after = std::uint32_t(position + 1);
-      int top = 0;
-      stack[top++] = 0;
-      while (top > 0) {
-        const BoxTree::Node& node = bvh.nodes[stack[--top]];
-        if (node.end <= after || !boxes_overlap(node.box, query)) continue;
-        if (node.left != 0) {
-          stack[top++] = node.left;
-          stack[top++] = node.left + 1;
-          continue;
-        }
-        for (std::uint32_t i = std::max(node.begin, after); i < node.end; ++i) {
-          const std::uint32_t u = bvh.order[i];
-          if (degenerate[u] || !boxes_overlap(bvh.leaf_boxes[i], query)) continue;
-          ++out.candidates;
-          const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
-          if (triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) {
-            ++out.pairs;
-            if (cap > 0) {
-              out.smallest.push_back(TrianglePair{lo, hi});
-              if (out.smallest.size() >= 2 * cap) keep_smallest(out.smallest, cap);
-            }
-          }
-        }
+  const std::vector<NodeTask> tasks = split_traversal(bvh, parallel ? kParallelTasks : 1);
+  std::vector<BlockResult> blocks(tasks.size());
+  auto run_task = [&](std::size_t k) {
+    const FpEnvironmentScope fp;  // one MXCSR check per task (per thread)
+    BlockResult& out = blocks[k];
+    auto visit_pair = [&](std::uint32_t t, std::uint32_t u) {
+      if (degenerate[t] || degenerate[u]) return;
+      ++out.candidates;
+      const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
+      if (!triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) return;
+      ++out.pairs;
+      if (cap > 0) {
+        out.smallest.push_back(TrianglePair{lo, hi});
+        if (out.smallest.size() >= 2 * cap) keep_smallest(out.smallest, cap);
       }
-    }
+    };
+    run_traversal(bvh, tasks[k], visit_pair);
     keep_smallest(out.smallest, cap);
   };
   if (parallel)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks, 1),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tasks.size(), 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t b = r.begin(); b < r.end(); ++b) run_block(b);
+                        for (std::size_t k = r.begin(); k < r.end(); ++k) run_task(k);
                       });
   else
-    for (std::size_t b = 0; b < num_blocks; ++b) run_block(b);
+    for (std::size_t k = 0; k < tasks.size(); ++k) run_task(k);
 
   for (const BlockResult& block : blocks) {
     result.intersecting_pairs += block.pairs;

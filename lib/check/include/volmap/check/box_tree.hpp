@@ -23,7 +23,7 @@ inline bool boxes_overlap(const Box3& x, const Box3& y) {
          x.lo[2] <= y.hi[2] && y.lo[2] <= x.hi[2];
 }
 
-inline constexpr std::uint32_t kBoxTreeLeafSize = 4;
+inline constexpr std::uint32_t kBoxTreeLeafSize = 8;
 
 struct BoxTree {
   struct Node {
