@@ -6,6 +6,7 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -314,4 +315,67 @@ TEST_CASE("medit: coordinates are the doubles std::from_chars gives (random deci
       MESSAGE("token " << tokens[i] << ": read " << m.xyz[i] << ", from_chars " << expected);
   }
   CHECK(mismatches == 0);
+}
+
+// Regular files are read through a window of 2 MiB that slides over whole lines (io_text.hpp,
+// FileWindow): a file several windows long, with the layouts that could straddle a window's end —
+// records split over lines, comments, blank and CRLF lines, and one comment line longer than the
+// window — must give exactly the arrays it was written from, and errors past the first window must
+// name their exact line and byte offset.
+TEST_CASE("medit: files longer than the reading window") {
+  const std::size_t nv = 60000, nt = 150000;
+  std::mt19937 rng(2026);
+  std::uniform_int_distribution<int> coordinate(-4000000, 4000000);
+  std::uniform_int_distribution<std::uint32_t> vertex(0, nv - 1);
+  std::vector<double> xyz(3 * nv);
+  std::vector<std::uint32_t> tets(4 * nt);
+  for (double& x : xyz) x = coordinate(rng) / 1024.0;  // exact in decimal and in binary
+  for (std::uint32_t& v : tets) v = vertex(rng);
+  std::string text = "MeshVersionFormatted 1\nDimension 3\nVertices\n" + std::to_string(nv) + "\n";
+  auto number = [](double x) {
+    char buf[64];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+  };
+  for (std::size_t i = 0; i < nv; ++i) {
+    if (i == nv / 2) text += "# " + std::string(3 << 20, 'c') + "\n";  // longer than the window
+    if (i % 1511 == 0) text += "# a comment line\n\n";
+    const std::string sep = i % 997 == 0 ? "\n" : " ";  // a record split over two lines
+    text += number(xyz[3 * i]) + " " + number(xyz[3 * i + 1]) + sep + number(xyz[3 * i + 2]) + " 0" +
+            (i % 1999 == 0 ? "\r\n" : "\n");
+  }
+  text += "Tetrahedra\n" + std::to_string(nt) + "\n";
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 4; ++k) text += std::to_string(tets[4 * t + k] + 1) + (k % 2 == 0 && t % 1303 == 0 ? "  \n" : " ");
+    text += "7\n";
+  }
+  text += "End\n";
+  REQUIRE(text.size() > (6u << 20));
+
+  const TetMeshData mesh = read_medit(write_text("long.mesh", text));
+  CHECK(same_bits(mesh.xyz, xyz));
+  CHECK(mesh.tets == tets);
+  CHECK(mesh.tet_labels == std::vector<std::int32_t>(nt, 7));
+
+  SUBCASE("a malformed id past the first windows names its line") {
+    std::string bad = text;
+    const std::size_t line_start = bad.rfind('\n', bad.size() - 200) + 1;  // a tet line near the end
+    REQUIRE(line_start > bad.find("Tetrahedra"));
+    bad.replace(line_start, 1, "x");
+    const std::size_t bad_line = 1 + std::size_t(std::count(bad.begin(), bad.begin() + std::ptrdiff_t(line_start), '\n'));
+    const Error e = parse_error(bad, "long_bad.mesh");
+    CHECK(e.line() == bad_line);
+  }
+  SUBCASE("a NUL byte past the first window is named with its offset") {
+    std::string bad = text;
+    const std::size_t offset = bad.size() - 100;
+    bad[offset] = '\0';
+    const Error e = parse_error(bad, "long_nul.mesh");
+    CHECK(e.reason().find("NUL byte at offset " + std::to_string(offset)) != std::string::npos);
+  }
+  SUBCASE("a file cut in its last window is truncated at the right element") {
+    const std::string cut = text.substr(0, text.size() - 4 - 2 * 12);  // without End and the last tets
+    const Error e = parse_error(cut, "long_cut.mesh");
+    CHECK(e.reason().find("Tetrahedra block truncated") != std::string::npos);
+    CHECK(e.reason().find("of " + std::to_string(nt)) != std::string::npos);
+  }
 }

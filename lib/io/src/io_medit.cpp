@@ -42,9 +42,10 @@ std::string truncated(const char* section, std::size_t index, std::size_t count)
 
 }  // namespace
 
-TetMeshData read_medit(const std::string& path) {
-  const io_detail::FileBytes data = io_detail::read_file_bytes(path, {/*text=*/true});
-  Tokenizer tok(data.begin(), data.end(), /*hash_comments=*/true);
+namespace {
+
+// The Medit grammar over `tok` (whole lines at a time; Token texts do not outlive the next token).
+TetMeshData parse_medit(Tokenizer& tok, const std::string& path) {
   TetMeshData mesh;
   bool have_vertices = false, have_tets = false;
   std::size_t tets_line = 0;
@@ -52,7 +53,7 @@ TetMeshData read_medit(const std::string& path) {
   if (!tok.peek(t)) throw_bad_input(path, 0, "empty file (not a Medit .mesh)");
 
   while (tok.next(t)) {
-    const std::string_view key = t.text;
+    const std::string key(t.text);  // a copy: the window may move on while the section is read
     if (!io_detail::is_letter(key[0]))
       throw_bad_input(path, t.line, "expected a section keyword, found " + io_detail::quote(key) +
                                         " (wrong element count in the previous section?)");
@@ -195,6 +196,22 @@ TetMeshData read_medit(const std::string& path) {
       throw_bad_input(path, tets_line, "tet " + std::to_string(k / 4 + 1) + ": vertex id " + std::to_string(mesh.tets[k] + 1) +
                                            " outside [1," + std::to_string(nv) + "]");
   return mesh;
+}
+
+}  // namespace
+
+// Regular files are read through a sliding window (memory independent of the file's size), other
+// files (pipes, devices) whole.
+TetMeshData read_medit(const std::string& path) {
+  const io_detail::ReadOptions options{/*text=*/true};
+  if (io_detail::FileWindow::suits(path)) {
+    io_detail::FileWindow window(path, options);
+    Tokenizer tok(window, /*hash_comments=*/true);
+    return parse_medit(tok, path);
+  }
+  const io_detail::FileBytes data = io_detail::read_file_bytes(path, options);
+  Tokenizer tok(data.begin(), data.end(), /*hash_comments=*/true);
+  return parse_medit(tok, path);
 }
 
 void write_medit(AtomicOutput& out, const TetMeshData& mesh) {

@@ -140,6 +140,87 @@ FileBytes read_file_bytes(const std::string& path, const ReadOptions& options) {
   return f;
 }
 
+bool FileWindow::suits(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  return !ec && std::filesystem::is_regular_file(status) && std::filesystem::file_size(path, ec) > 0 && !ec;
+}
+
+FileWindow::FileWindow(const std::string& path, const ReadOptions& options, std::size_t window_bytes)
+    : path_(path), options_(options), buffer_(std::max<std::size_t>(window_bytes, 4096)) {
+  if (options.text_prefix != 0 || options.max_line != 0)
+    throw Error(ErrorKind::Unsupported, path, 0, "internal: a file window vets text and byte-order marks only");
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw_io(path, "is a directory, not a file");
+  file_ = std::fopen(path.c_str(), "rb");
+  if (!file_) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
+  const auto size = std::filesystem::file_size(path, ec);
+  file_size_ = ec ? 0 : static_cast<std::size_t>(size);
+}
+
+FileWindow::~FileWindow() {
+  if (file_) std::fclose(file_);
+}
+
+std::size_t FileWindow::remaining_after(const char* p) const {
+  const std::size_t at = offset_ + static_cast<std::size_t>(p - buffer_.data());
+  return std::max(file_size_, offset_ + filled_) - at;
+}
+
+// Appends what fits (growing the buffer when it is full) and vets it.
+void FileWindow::read_more() {
+  if (filled_ == buffer_.size()) {
+    HugeBuffer<char> bigger(2 * buffer_.size());
+    std::memcpy(bigger.data(), buffer_.data(), filled_);
+    buffer_ = std::move(bigger);
+  }
+  const std::size_t got = std::fread(buffer_.data() + filled_, 1, buffer_.size() - filled_, file_);
+  if (std::ferror(file_)) throw_io(path_, "read error");
+  if (got == 0) {
+    eof_ = true;
+    return;
+  }
+  if (options_.text)
+    if (const void* nul = std::memchr(buffer_.data() + filled_, '\0', got))
+      throw_bad_input(path_, 0, "binary data (a NUL byte at offset " +
+                                    std::to_string(offset_ + static_cast<std::size_t>(static_cast<const char*>(nul) - buffer_.data())) +
+                                    "): not a text file");
+  filled_ += got;
+}
+
+bool FileWindow::advance(const char* keep_from, const char*& begin, const char*& end) {
+  const bool first = keep_from == nullptr;
+  if (!first && eof_ && exposed_ == filled_) return false;  // nothing more in the file
+  // Move the unconsumed bytes (from keep_from: the rest of the window, then the partial line after
+  // it) to the front.
+  const std::size_t keep_at = first ? 0 : static_cast<std::size_t>(keep_from - buffer_.data());
+  std::memmove(buffer_.data(), buffer_.data() + keep_at, filled_ - keep_at);
+  offset_ += keep_at;
+  filled_ -= keep_at;
+  exposed_ -= keep_at;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t before = filled_;
+    if (!eof_) read_more();
+    if (first && offset_ == 0 && options_.strip_bom && filled_ >= 3 && std::memcmp(buffer_.data(), "\xEF\xBB\xBF", 3) == 0)
+      start = 3;  // a UTF-8 byte-order mark carries nothing
+    if (eof_) {
+      exposed_ = filled_;
+      break;
+    }
+    // Expose up to the last newline read, once there is one after what was exposed already.
+    const char* data = buffer_.data();
+    const void* last = memrchr(data + before, '\n', filled_ - before);
+    if (last) {
+      exposed_ = static_cast<std::size_t>(static_cast<const char*>(last) - data) + 1;
+      break;
+    }
+  }
+  begin = buffer_.data() + (first ? start : 0);
+  end = buffer_.data() + exposed_;
+  return true;
+}
+
 bool parse_double(std::string_view text, double& value) {
   if (text.empty() || text.size() > kMaxNumberChars) return false;
   if (text[0] == '+') {

@@ -49,6 +49,42 @@ struct FileBytes {
 };
 FileBytes read_file_bytes(const std::string& path, const ReadOptions& options = {});
 
+// A regular file read through a window that slides over it, for readers whose memory should not
+// grow with the file: the window holds whole lines only (it ends after a newline, or at the end of
+// the file), and the Tokenizer built on it moves on to the next lines when it reaches the window's
+// end while skipping whitespace (Tokenizer(FileWindow&, ...)). Bytes are vetted as `options` says
+// (`text` and `strip_bom` only) as they arrive. A line longer than the window grows the window.
+class FileWindow {
+ public:
+  FileWindow(const std::string& path, const ReadOptions& options, std::size_t window_bytes = kHugePageBytes);
+  ~FileWindow();
+  FileWindow(const FileWindow&) = delete;
+  FileWindow& operator=(const FileWindow&) = delete;
+
+  // Whether `path` can be read this way (a non-empty regular file); other files go through
+  // read_file_bytes.
+  static bool suits(const std::string& path);
+
+  // Drops the bytes before `keep_from` (inside the current window), reads on, and sets [begin, end)
+  // to the new window. Returns false, leaving everything as it was, when the file has no bytes left.
+  bool advance(const char* keep_from, const char*& begin, const char*& end);
+  // Bytes of the file after `p` (a position in the current window), by its size when opened.
+  std::size_t remaining_after(const char* p) const;
+
+ private:
+  void read_more();
+
+  std::string path_;
+  ReadOptions options_;
+  std::FILE* file_ = nullptr;
+  std::size_t file_size_ = 0;
+  HugeBuffer<char> buffer_;
+  std::size_t filled_ = 0;       // bytes of buffer_ holding file data
+  std::size_t exposed_ = 0;      // bytes of buffer_ handed out (whole lines)
+  std::size_t offset_ = 0;       // file offset of buffer_[0]
+  bool eof_ = false;
+};
+
 struct Token {
   std::string_view text;
   std::size_t line = 0;  // 1-based line of the token's first character
@@ -66,6 +102,14 @@ class Tokenizer {
  public:
   Tokenizer(const char* begin, const char* end, bool hash_comments)
       : begin_(begin), pos_(begin), end_(end), hash_comments_(hash_comments) {}
+  // Over a sliding window: skip_space moves the window on when it reaches its end, so Token texts
+  // and saved States are valid until the next call that skips whitespace (next, next_unsigned, peek,
+  // skip_space); the bulk fast paths never move it (they report the window's end as a failure).
+  Tokenizer(FileWindow& window, bool hash_comments)
+      : begin_(nullptr), pos_(nullptr), end_(nullptr), window_(&window), hash_comments_(hash_comments) {
+    window.advance(nullptr, begin_, end_);
+    pos_ = begin_;
+  }
 
   // Next token, or false at the end of the buffer.
   bool next(Token& token) {
@@ -162,6 +206,7 @@ class Tokenizer {
   State save() const { return {pos_, line_, last_line_}; }
   void restore(const State& s) { pos_ = s.pos, line_ = s.line, last_line_ = s.last_line; }
   bool peek(Token& token) {
+    skip_space();  // moves the window first, if it must, so that the saved position stays valid
     const char* saved = pos_;
     const std::size_t saved_line = line_;
     const std::size_t saved_last = last_line_;
@@ -171,17 +216,19 @@ class Tokenizer {
   }
   // Skips whitespace and comments; afterwards position() is at the next token (or the end).
   void skip_space() {
-    while (pos_ != end_) {
-      const unsigned k = kind(*pos_);
-      if (k == kTokenChar) break;
-      if (k == kNewline) {
-        ++line_, ++pos_;
-      } else if (k == kComment) {
-        while (pos_ != end_ && *pos_ != '\n') ++pos_;
-      } else {
-        ++pos_;
+    do {
+      while (pos_ != end_) {
+        const unsigned k = kind(*pos_);
+        if (k == kTokenChar) return;
+        if (k == kNewline) {
+          ++line_, ++pos_;
+        } else if (k == kComment) {
+          while (pos_ != end_ && *pos_ != '\n') ++pos_;
+        } else {
+          ++pos_;
+        }
       }
-    }
+    } while (window_ && window_->advance(pos_, begin_, end_) && (pos_ = begin_, true));
   }
   // Moves to the start of the next line (used after a keyword line whose rest is binary data).
   void skip_rest_of_line() {
@@ -193,7 +240,10 @@ class Tokenizer {
   void count_line() { ++line_; }
   // Line of the last token returned by next() (1 before any): where truncation errors point.
   std::size_t last_line() const { return last_line_; }
-  std::size_t remaining() const { return static_cast<std::size_t>(end_ - pos_); }
+  // Bytes left to read (of the whole file for a window).
+  std::size_t remaining() const {
+    return window_ ? window_->remaining_after(pos_) : static_cast<std::size_t>(end_ - pos_);
+  }
   const char* position() const { return pos_; }
   const char* end() const { return end_; }
   const char* begin() const { return begin_; }
@@ -233,6 +283,7 @@ class Tokenizer {
   const char* begin_;
   const char* pos_;
   const char* end_;
+  FileWindow* window_ = nullptr;
   std::size_t line_ = 1;
   std::size_t last_line_ = 1;
   bool hash_comments_;
