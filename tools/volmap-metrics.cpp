@@ -8,8 +8,10 @@
 // where VOLMAP reads uninitialised singular values: by default they get `upper` for every energy;
 // --emulate-volmap-singular-tets reproduces VOLMAP's values (see MetricsOptions in metrics.hpp).
 // Tets are paired by connectivity: the output's positions are read with the input tet's vertex ids.
-// in.mesh (and --original) must be valid VOLMAP inputs (input_mesh.hpp), else exit 2 naming the file;
-// every mesh is read through the format dispatcher. The CSV line and the .vtu are written together
+// in.mesh (and --original) must be valid VOLMAP inputs (input_mesh.hpp), else exit 2 naming the file
+// (that reason first, before a mismatch with out.mesh); every mesh is read through the format
+// dispatcher. The two meshes are read at once, and in.mesh is validated while the metrics are
+// computed (two threads), with out.mesh's tet list freed once matched: wall time and peak memory. The CSV line and the .vtu are written together
 // or not at all. Exit 0 when computed (also for maps with inverted tets: this tool measures, it does
 // not certify), 2 on bad or mismatched input.
 #include "support/input_mesh.hpp"
@@ -17,9 +19,14 @@
 
 #include <volmap/io/atomic_file.hpp>
 #include <volmap/io/io.hpp>
+#include <volmap/check/input_mesh.hpp>
+#include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
 
+#include <tbb/parallel_invoke.h>
+
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +34,40 @@
 #include <sstream>
 
 namespace {
+// The output's own tet list, once matched against the input's, is not needed again: freeing it
+// before the validation and the metrics keeps the peak memory below VOLMAP's.
+void release_tets(volmap::TetMeshData& mesh) {
+  std::vector<std::uint32_t>().swap(mesh.tets);
+  std::vector<std::int32_t>().swap(mesh.tet_labels);
+}
+
+// Validates `in` (exit 2 naming in_path unless it is a valid input) while `metrics` runs, on two
+// threads when there are two. The validation's error comes first, then the metrics' own.
+template <class Metrics>
+volmap::MetricsReport validate_input_beside_metrics(const volmap::TetMeshData& in, const std::string& in_path,
+                                                    Metrics&& metrics) {
+  volmap::MetricsReport report;
+  std::exception_ptr failed[2];
+  tbb::parallel_invoke(
+      [&] {
+        try {
+          volmap::require_valid_input_mesh(in, in_path);
+        } catch (...) {
+          failed[0] = std::current_exception();
+        }
+      },
+      [&] {
+        try {
+          report = metrics();
+        } catch (...) {
+          failed[1] = std::current_exception();
+        }
+      });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  return report;
+}
+
 nlohmann::json stats_json(const volmap::RangeStats& s) {
   if (!s.defined) return {{"min", nullptr}, {"max", nullptr}, {"mean", nullptr}, {"defined", false}};
   return {{"min", s.min}, {"max", s.max}, {"mean", s.mean}, {"defined", true}};
@@ -67,8 +108,15 @@ int main(int argc, char** argv) {
     files.input(original_path, "--original mesh");
     volmap::AtomicOutput* csv_out = csv_path.empty() ? nullptr : &files.output(csv_path, "--csv file");  // appended to
     volmap::AtomicOutput* vtu_out = vtu_path.empty() ? nullptr : &files.output(vtu_path, "--vtu output");
-    const volmap::TetMeshData in = volmap_tools::read_input_tet_mesh(inputs, in_path);
-    const volmap::TetMeshData out = inputs.read(out_path);
+    auto [in, out] = inputs.read_two(in_path, out_path);
+    const std::string pair_name = out_path + " (against " + in_path + ")";
+    try {
+      volmap_tools::naming_file(pair_name, [&] { volmap::match_connectivity(in, out); });
+    } catch (const volmap::Error&) {
+      volmap::require_valid_input_mesh(in, in_path);  // an invalid input is the problem to name first
+      throw;
+    }
+    release_tets(out);  // matched: from here on the map is out.xyz over in.tets
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
       const volmap::TetMeshData original = volmap_tools::read_input_tet_mesh(inputs, original_path);
@@ -80,8 +128,9 @@ int main(int argc, char** argv) {
     options.upper = upper;
     options.keep_per_tet = vtu_out != nullptr;
     options.emulate_volmap_singular_tets = emulate_singular;
-    const volmap::MetricsReport r = volmap_tools::naming_file(out_path + " (against " + in_path + ")",
-                                                              [&] { return volmap::compute_metrics(in, out, options); });
+    const volmap::MetricsReport r = validate_input_beside_metrics(in, in_path, [&] {
+      return volmap_tools::naming_file(pair_name, [&] { return volmap::compute_metrics(in, out.xyz, options); });
+    });
     if (csv_out) {
       // Appended like VOLMAP's log, but atomically: the old content plus the new line is written to a
       // temporary file and renamed over the log (an interrupted run never leaves a torn line).
@@ -98,7 +147,7 @@ int main(int argc, char** argv) {
     }
     if (vtu_out) {
       // Cells in the INPUT's tet order and vertex order (the order the metrics were evaluated in).
-      volmap::TetMeshData cells = out;
+      volmap::TetMeshData cells = std::move(out);
       cells.tets = in.tets;
       cells.tet_labels = in.tet_labels;
       std::vector<volmap::CellDataArray> data;

@@ -128,6 +128,23 @@ TEST_CASE("pairing by connectivity: reordered output tets give the same numbers;
   TetMeshData fewer = out;
   fewer.tets.resize(fewer.tets.size() - 4);
   CHECK_THROWS_AS(compute_metrics(grid, fewer), Error);
+  // The positions-only form (the caller matched the tets) gives the same report, bit for bit.
+  const MetricsReport c = compute_metrics(grid, rotated.xyz);
+  auto same = [](const RangeStats& x, const RangeStats& y) {
+    return x.defined == y.defined && x.min == y.min && x.max == y.max && x.mean == y.mean;
+  };
+  for (int e = 0; e < kNumEnergies; ++e) {
+    CHECK(same(a.energy[e], c.energy[e]));
+    CHECK(same(a.energy_scaled[e], c.energy_scaled[e]));
+  }
+  CHECK(a.quality_out.mean == c.quality_out.mean);
+  CHECK(a.scale_factor == c.scale_factor);
+  std::vector<double> short_xyz = out.xyz;
+  short_xyz.resize(short_xyz.size() - 3);
+  CHECK_THROWS_AS(compute_metrics(grid, short_xyz), Error);
+  TetMeshData wild = grid;
+  wild.tets[7] = std::uint32_t(grid.num_vertices());
+  CHECK_THROWS_AS(compute_metrics(wild, out.xyz), Error);
   // A non-positive source is rejected (VOLMAP asserts on tet 0 only).
   TetMeshData bad_in = grid;
   std::swap(bad_in.tets[4], bad_in.tets[5]);
@@ -397,6 +414,13 @@ TEST_CASE("tool: bad and mismatched inputs exit 2 with a reason") {
   // Refused by the input gate, in words.
   CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("opposite orientation convention") != std::string::npos);
   CHECK(vmap_test::run(tool + " " + quote(bone.string()) + " " + quote((dir / "duck_output.mesh").string())).code == 2);
+  // An invalid input is named before a mismatched output.
+  r = vmap_test::run(tool + " " + quote((dir / "hand_aigerman.mesh").string()) + " " +
+                     quote((dir / "duck_output.mesh").string()) + " --json");
+  CHECK(r.code == 2);
+  const std::string reason = nlohmann::json::parse(r.out)["error"].get<std::string>();
+  CHECK(reason.find("opposite orientation convention") != std::string::npos);
+  CHECK(reason.find("hand_aigerman.mesh") != std::string::npos);
   CHECK(vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(bone.string()) + " --upper abc").code == 2);
   CHECK(vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(bone.string()) + " --upper 2").code == 2);
 }

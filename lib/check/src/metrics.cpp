@@ -60,7 +60,7 @@ struct TetResult {
 
 struct TetContext {
   const TetMeshData& in;
-  const TetMeshData& out;
+  const std::vector<double>& out_xyz;
   const std::int8_t* sign_out;
   double scale, upper;
   ClosedFormBounds bounds;
@@ -107,8 +107,8 @@ void valid_tet_energies(const TetContext& c, const double* const pin[4], const d
 void evaluate_tet(const TetContext& c, std::size_t t, TetResult& r) {
   const std::uint32_t* tet = &c.in.tets[4 * t];
   const double* pin[4] = {&c.in.xyz[3 * tet[0]], &c.in.xyz[3 * tet[1]], &c.in.xyz[3 * tet[2]], &c.in.xyz[3 * tet[3]]};
-  const double* pout[4] = {&c.out.xyz[3 * tet[0]], &c.out.xyz[3 * tet[1]], &c.out.xyz[3 * tet[2]],
-                           &c.out.xyz[3 * tet[3]]};
+  const double* pout[4] = {&c.out_xyz[3 * tet[0]], &c.out_xyz[3 * tet[1]], &c.out_xyz[3 * tet[2]],
+                           &c.out_xyz[3 * tet[3]]};
   double* sigma = c.per_tet ? &c.per_tet->singular_values[3 * t] : nullptr;
   if (c.sign_out[t] > 0) {
     valid_tet_energies(c, pin, pout, r, sigma);
@@ -236,16 +236,17 @@ struct FirstPass {
   }
 };
 
-FirstPass orientation_and_volumes(const TetMeshData& in, const TetMeshData& out, std::int8_t* sign_out, bool parallel) {
-  auto corners = [](const TetMeshData& m, const std::uint32_t* tet, const double* p[4]) {
-    for (int k = 0; k < 4; ++k) p[k] = &m.xyz[3 * tet[k]];
+FirstPass orientation_and_volumes(const TetMeshData& in, const std::vector<double>& out_xyz, std::int8_t* sign_out,
+                                  bool parallel) {
+  auto corners = [](const std::vector<double>& xyz, const std::uint32_t* tet, const double* p[4]) {
+    for (int k = 0; k < 4; ++k) p[k] = &xyz[3 * tet[k]];
   };
   auto body = [&](const tbb::blocked_range<std::size_t>& r, FirstPass acc) {
     const FpEnvironmentScope fp;  // MXCSR is per thread: one scope per task body
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const double *a[4], *b[4];
-      corners(in, &in.tets[4 * t], a);
-      corners(out, &in.tets[4 * t], b);
+      corners(in.xyz, &in.tets[4 * t], a);
+      corners(out_xyz, &in.tets[4 * t], b);
       if (fp.orient3d(a[0], a[1], a[2], a[3]) <= 0) {
         ++acc.in_not_positive;
         acc.first_in_not_positive = std::min(acc.first_in_not_positive, t);
@@ -263,8 +264,8 @@ FirstPass orientation_and_volumes(const TetMeshData& in, const TetMeshData& out,
                              : body(tbb::blocked_range<std::size_t>(0, nt), FirstPass{});
   for (std::size_t t = 0; t < nt; ++t) {
     const double *a[4], *b[4];
-    corners(in, &in.tets[4 * t], a);
-    corners(out, &in.tets[4 * t], b);
+    corners(in.xyz, &in.tets[4 * t], a);
+    corners(out_xyz, &in.tets[4 * t], b);
     const double vi = volume_volmap(a[0], a[1], a[2], a[3]), vo = volume_volmap(b[0], b[1], b[2], b[3]);
     first.in_abs += std::fabs(vi);
     first.out_signed += vo;
@@ -273,8 +274,8 @@ FirstPass orientation_and_volumes(const TetMeshData& in, const TetMeshData& out,
   return first;
 }
 
-void require_finite(const TetMeshData& mesh, const char* what) {
-  if (!std::all_of(mesh.xyz.begin(), mesh.xyz.end(), [](double x) { return std::isfinite(x); }))
+void require_finite(const std::vector<double>& xyz, const char* what) {
+  if (!std::all_of(xyz.begin(), xyz.end(), [](double x) { return std::isfinite(x); }))
     throw Error(ErrorKind::BadInput, std::string(what) + ": non-finite vertex coordinate");
 }
 
@@ -288,7 +289,7 @@ void evaluate_range(const TetContext& c, std::size_t begin, std::size_t end, Tet
       const std::uint32_t* ahead = &c.in.tets[4 * (t + kPrefetchDistance)];
       for (int k = 0; k < 4; ++k) {
         __builtin_prefetch(&c.in.xyz[3 * std::size_t(ahead[k])]);
-        __builtin_prefetch(&c.out.xyz[3 * std::size_t(ahead[k])]);
+        __builtin_prefetch(&c.out_xyz[3 * std::size_t(ahead[k])]);
       }
     }
     evaluate_tet(c, t, results[t - begin]);
@@ -371,23 +372,35 @@ double tet_scaled_jacobian_volmap(const double* p0, const double* p1, const doub
 }
 
 MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, const MetricsOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  if (!(options.upper >= 6.0) || !std::isfinite(options.upper)) {
-    throw Error(ErrorKind::BadInput, "upper bound must be a finite number >= 6 (the largest lower clamp)");
-  }
   if (in.xyz.size() % 3 != 0 || in.tets.size() % 4 != 0 || out.xyz.size() % 3 != 0 || out.tets.size() % 4 != 0) {
     throw Error(ErrorKind::BadInput, "malformed mesh arrays");
   }
   match_connectivity(in, out);  // throws on any mismatch
+  return compute_metrics(in, out.xyz, options);
+}
+
+MetricsReport compute_metrics(const TetMeshData& in, const std::vector<double>& out_xyz, const MetricsOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(options.upper >= 6.0) || !std::isfinite(options.upper)) {
+    throw Error(ErrorKind::BadInput, "upper bound must be a finite number >= 6 (the largest lower clamp)");
+  }
+  if (in.xyz.size() % 3 != 0 || in.tets.size() % 4 != 0) throw Error(ErrorKind::BadInput, "malformed mesh arrays");
+  if (out_xyz.size() != in.xyz.size())
+    throw Error(ErrorKind::BadInput, "the output has " + std::to_string(out_xyz.size() / 3) + " vertex positions, the input " +
+                                         std::to_string(in.num_vertices()) + " vertices");
+  for (std::uint32_t v : in.tets)
+    if (v >= in.num_vertices())
+      throw Error(ErrorKind::BadInput, "input mesh: a tet refers to vertex " + std::to_string(v) + " of " +
+                                           std::to_string(in.num_vertices()));
   const std::size_t nt = in.num_tets();
   MetricsReport report;
   report.num_tets = nt;
   report.upper = options.upper;
 
-  require_finite(in, "input mesh");
-  require_finite(out, "output mesh");
+  require_finite(in.xyz, "input mesh");
+  require_finite(out_xyz, "output mesh");
   std::vector<std::int8_t> sign_out(nt);
-  const FirstPass first = orientation_and_volumes(in, out, sign_out.data(), options.parallel);
+  const FirstPass first = orientation_and_volumes(in, out_xyz, sign_out.data(), options.parallel);
   if (first.in_not_positive != 0) {
     throw Error(ErrorKind::BadInput, "input mesh has " + std::to_string(first.in_not_positive) +
                                " tets that are not VOLMAP-positive (exact orient3d <= 0; first: tet " +
@@ -415,7 +428,7 @@ MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, con
     p.singular_values.resize(3 * nt);
   }
   const TetContext context{in,
-                           out,
+                           out_xyz,
                            sign_out.data(),
                            report.scale_factor,
                            options.upper,

@@ -98,6 +98,12 @@ struct MetricsReport {
 // tet that is not strictly positive, or upper < lower bounds.
 MetricsReport compute_metrics(const TetMeshData& in, const TetMeshData& out, const MetricsOptions& options = {});
 
+// The same for a map given as positions only: out_xyz[3v..3v+2] is the image of input vertex v (a
+// caller that has matched the output's tets against the input's, e.g. with match_connectivity, can
+// free them first). Throws Error(BadInput) when the sizes differ or a tet refers to a missing vertex.
+MetricsReport compute_metrics(const TetMeshData& in, const std::vector<double>& out_xyz,
+                              const MetricsOptions& options = {});
+
 // Single-tet helpers (points are 3 doubles), exposed for tests and other modules.
 // Returns the clamped energies of J = F_out·F_in⁻¹ (valid tets only; not for inverted ones).
 std::array<double, kNumEnergies> tet_energies(const double* const in[4], const double* const out[4], double upper);
