@@ -3,6 +3,7 @@
 
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
+#include <volmap/core/local_tables.hpp>
 #include <volmap/testing/generate.hpp>
 #include <volmap/core/tet_mesh.hpp>
 #include <volmap/core/topology.hpp>
@@ -278,47 +279,160 @@ TEST_CASE("boundary half-faces agree with the IO module's boundary_half_faces (i
   }
 }
 
-TEST_CASE("random triangle soups: analyze_surface_topology's edges agree with a std::map oracle") {
+namespace {
+// analyze_surface_topology against std::map / std::set oracles: per undirected edge of a triangle
+// with three distinct ids, its triangles and how many traverse it from the lower id to the higher;
+// per vertex, its link (the edges (next, prev) of its triangles): manifold when the link is
+// connected and no link vertex has degree above 2.
+void check_surface_against_oracle(std::uint32_t nv, const std::vector<std::uint32_t>& tris) {
+  const SurfaceTopology s = analyze_surface_topology(nv, tris);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> edges;  // (count, forward)
+  std::map<std::uint32_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>> links;
+  std::set<std::uint32_t> used;
+  std::size_t valid = 0;
+  for (std::size_t t = 0; t < tris.size() / 3; ++t) {
+    const std::uint32_t* v = &tris[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    ++valid;
+    for (int k = 0; k < 3; ++k) {
+      used.insert(v[k]);
+      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+      auto& e = edges[{std::min(a, b), std::max(a, b)}];
+      ++e.first;
+      e.second += a < b;
+      links[a].push_back({b, v[(k + 2) % 3]});
+    }
+  }
+  std::size_t border = 0, over = 0, inconsistent = 0, nonmanifold = 0;
+  std::uint32_t example = 0xFFFFFFFFu, example_vertex = 0xFFFFFFFFu;
+  for (const auto& [e, c] : edges) {
+    border += c.first == 1;
+    over += c.first > 2;
+    inconsistent += c.first == 2 && c.second != 1;
+    if (c.first != 2 && example == 0xFFFFFFFFu) example = e.first;
+  }
+  for (const auto& [v, link] : links) {
+    std::map<std::uint32_t, std::set<std::uint32_t>> adjacent;
+    std::map<std::uint32_t, int> degree;
+    for (const auto& [a, b] : link) adjacent[a].insert(b), adjacent[b].insert(a), ++degree[a], ++degree[b];
+    std::set<std::uint32_t> seen{adjacent.begin()->first};
+    std::vector<std::uint32_t> stack{adjacent.begin()->first};
+    while (!stack.empty()) {
+      const std::uint32_t w = stack.back();
+      stack.pop_back();
+      for (std::uint32_t x : adjacent[w])
+        if (seen.insert(x).second) stack.push_back(x);
+    }
+    bool ok = seen.size() == adjacent.size();
+    for (const auto& [w, d] : degree) ok = ok && d <= 2;
+    if (!ok && nonmanifold++ == 0) example_vertex = v;
+  }
+  CHECK(s.num_triangles == valid);
+  CHECK(s.num_used_vertices == used.size());
+  CHECK(s.num_edges == edges.size());
+  CHECK(s.num_border_edges == border);
+  CHECK(s.num_overshared_edges == over);
+  CHECK(s.num_inconsistent_edges == inconsistent);
+  CHECK(s.example_nonmanifold_edge_vertex == example);
+  CHECK(s.num_nonmanifold_vertices == nonmanifold);
+  CHECK(s.example_nonmanifold_vertex == example_vertex);
+  CHECK(s.euler == long(used.size()) - long(edges.size()) + long(valid));
+}
+
+// The outward boundary triangles of a tet mesh.
+std::vector<std::uint32_t> boundary_triangles(const TetMeshData& mesh) {
+  std::vector<std::uint32_t> tris;
+  for (std::uint32_t h : analyze_topology(mesh).boundary_half_faces)
+    for (int k = 0; k < 3; ++k) tris.push_back(mesh.tets[4 * (h / 4) + kTetFace[h % 4][k]]);
+  return tris;
+}
+}  // namespace
+
+TEST_CASE("random triangle soups: analyze_surface_topology agrees with std::map oracles") {
   std::mt19937 rng(19);
   for (int round = 0; round < 300; ++round) {
     const std::uint32_t nv = 3 + rng() % 8;
     std::vector<std::uint32_t> tris;
     for (std::size_t t = 0, nt = 1 + rng() % 14; t < nt; ++t)
       for (int k = 0; k < 3; ++k) tris.push_back(rng() % nv);
-    const SurfaceTopology s = analyze_surface_topology(nv, tris);
-    // Oracle: per undirected edge of a triangle with three distinct ids, its triangles and how many
-    // traverse it from the lower id to the higher.
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> edges;  // (count, forward)
-    std::set<std::uint32_t> used;
-    std::size_t valid = 0;
-    for (std::size_t t = 0; t < tris.size() / 3; ++t) {
-      const std::uint32_t* v = &tris[3 * t];
-      if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
-      ++valid;
-      for (int k = 0; k < 3; ++k) {
-        used.insert(v[k]);
-        const std::uint32_t a = v[k], b = v[(k + 1) % 3];
-        auto& e = edges[{std::min(a, b), std::max(a, b)}];
-        ++e.first;
-        e.second += a < b;
-      }
-    }
-    std::size_t border = 0, over = 0, inconsistent = 0;
-    std::uint32_t example = 0xFFFFFFFFu;
-    for (const auto& [e, c] : edges) {
-      border += c.first == 1;
-      over += c.first > 2;
-      inconsistent += c.first == 2 && c.second != 1;
-      if (c.first != 2 && example == 0xFFFFFFFFu) example = e.first;
-    }
     INFO("round " << round);
-    CHECK(s.num_triangles == valid);
-    CHECK(s.num_used_vertices == used.size());
-    CHECK(s.num_edges == edges.size());
-    CHECK(s.num_border_edges == border);
-    CHECK(s.num_overshared_edges == over);
-    CHECK(s.num_inconsistent_edges == inconsistent);
-    CHECK(s.example_nonmanifold_edge_vertex == example);
-    CHECK(s.euler == long(used.size()) - long(edges.size()) + long(valid));
+    check_surface_against_oracle(nv, tris);
+  }
+}
+
+// Closed, consistently oriented 2-manifolds take the per-vertex cycle test (closed_manifold_links);
+// one defect anywhere must send them to the general analysis with the same counts as the oracle.
+TEST_CASE("closed surfaces and their one-defect variants: analyze_surface_topology agrees with the oracles") {
+  std::mt19937 rng(23);
+  const std::vector<TetMeshData> solids = {generate_kuhn_grid(1, 1, 1), generate_kuhn_grid(3, 2, 2),
+                                           generate_kuhn_grid(4, 4, 3)};
+  for (const TetMeshData& solid : solids) {
+    const std::uint32_t nv = std::uint32_t(solid.num_vertices());
+    const std::vector<std::uint32_t> closed = boundary_triangles(solid);
+    const std::size_t nf = closed.size() / 3;
+    const SurfaceTopology s = analyze_surface_topology(nv, closed);
+    CHECK(s.genus_defined);
+    CHECK(s.genus == 0);
+    CHECK(s.num_edges == 3 * nf / 2);
+    check_surface_against_oracle(nv, closed);
+    for (int round = 0; round < 40; ++round) {
+      std::vector<std::uint32_t> t = closed;
+      const std::size_t f = rng() % nf, g = (f + 1 + rng() % (nf - 1)) % nf;
+      switch (round % 6) {
+        case 0: std::swap(t[3 * f + 1], t[3 * f + 2]); break;       // one triangle flipped
+        case 1: t.erase(t.begin() + 3 * f, t.begin() + 3 * f + 3); break;  // a hole
+        case 2: t.insert(t.end(), t.begin() + 3 * f, t.begin() + 3 * f + 3); break;  // a triangle twice
+        case 3: t.insert(t.end(), {t[3 * f], t[3 * f + 2], t[3 * f + 1]}); break;    // and reversed
+        case 4: t[3 * f] = t[3 * g + (round / 6) % 3]; break;        // a corner moved: pinches
+        case 5: {                                                    // a second copy through one vertex
+          const std::uint32_t shared = t[3 * f];
+          const std::size_t n = t.size();
+          for (std::size_t k = 0; k < n; ++k) t.push_back(t[k] == shared ? shared : t[k] + nv);
+          break;
+        }
+      }
+      std::uint32_t max_id = 0;
+      for (std::uint32_t v : t) max_id = std::max(max_id, v);
+      INFO("solid with " << nv << " vertices, round " << round);
+      check_surface_against_oracle(max_id + 1, t);
+      if (round % 6 == 5) CHECK(analyze_surface_topology(max_id + 1, t).num_nonmanifold_vertices == 1);
+    }
+  }
+}
+
+// Duplicate tets are counted only where they can exist (a non-manifold face, a second component, or
+// no boundary at all); each of the three situations must still find them.
+TEST_CASE("duplicate tets in a clean mesh's three possible situations are counted") {
+  const TetMeshData grid = generate_kuhn_grid(3, 3, 3);
+  const TopologyReport clean = analyze_topology(grid);
+  CHECK(clean.num_duplicate_tets == 0);
+  SUBCASE("a copy of an inner tet: its faces become non-manifold") {
+    TetMeshData d = grid;
+    const std::size_t t = grid.num_tets() / 2;
+    d.tets.insert(d.tets.end(), grid.tets.begin() + 4 * t, grid.tets.begin() + 4 * t + 4);
+    const TopologyReport r = analyze_topology(d);
+    CHECK(r.num_duplicate_tets == 1);
+    CHECK(r.example_duplicate_first == t);
+    CHECK(r.example_duplicate_second == grid.num_tets());
+  }
+  SUBCASE("a lone tet and its copy (reversed) beside the grid: a second component") {
+    const TetMeshData one = generate_kuhn_grid(1, 1, 1);
+    TetMeshData pair = one;
+    pair.tets.assign({one.tets[0], one.tets[1], one.tets[2], one.tets[3], one.tets[1], one.tets[0], one.tets[2], one.tets[3]});
+    const TetMeshData d = concat(grid, pair, 10.0);
+    const TopologyReport r = analyze_topology(d);
+    CHECK(r.num_tet_components == 2);
+    CHECK(r.num_nonmanifold_faces == 0);
+    CHECK(r.num_duplicate_tets == 1);
+    CHECK(r.example_duplicate_first == grid.num_tets());
+  }
+  SUBCASE("the whole mesh is one tet twice: no boundary") {
+    TetMeshData d = generate_kuhn_grid(1, 1, 1);
+    d.tets.resize(4);
+    d.tets.insert(d.tets.end(), {d.tets[1], d.tets[0], d.tets[2], d.tets[3]});
+    const TopologyReport r = analyze_topology(d);
+    CHECK(r.num_tet_components == 1);
+    CHECK(r.num_boundary_faces == 0);
+    CHECK(r.num_duplicate_tets == 1);
   }
 }

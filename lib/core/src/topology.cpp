@@ -1,8 +1,9 @@
-// analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components;
-// its boundary triangles go through analyze_surface_topology (union-find components with
-// per-component chi; per vertex, over a CSR of incident triangles, its link: link union-find, and the
-// edges to higher ids with their multiplicity and direction), which the surface checks
-// (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
+// analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components,
+// duplicate tets only where they can exist (duplicates_possible); its boundary triangles go through
+// analyze_surface_topology (union-find components with per-component chi; per vertex, over a CSR of
+// incident triangles, the closed-manifold test of closed_manifold_links, and where it fails the
+// general link analysis: link union-find, and the edges to higher ids with their multiplicity and
+// direction), which the surface checks (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
 #include <volmap/core/topology.hpp>
 
 #include <volmap/core/error.hpp>
@@ -64,6 +65,116 @@ void count_duplicate_tets(const std::uint32_t* tv, std::uint32_t face_max, const
   }
 }
 
+// Per vertex v, its link: the opposite edge (next, prev) of each incident triangle (v, next, prev).
+// A link vertex w is on as many triangles with v as its link degree, so the edges (v, w), w > v,
+// are counted here with their multiplicity and direction (v -> w when w follows v), in (v, w)
+// order. A manifold vertex has one link component and link degrees <= 2.
+void general_links(std::size_t num_vertices, const std::vector<std::uint32_t>& tris,
+                   const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& incident,
+                   UnionFind& sets, std::vector<long long>& comp_chi, SurfaceTopology& st) {
+  std::vector<std::uint32_t> link_vertices, link_degree, link_forward;
+  UnionFind link_sets(0);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t begin = offsets[v], end = offsets[v + 1];
+    if (begin == end) continue;
+    link_vertices.clear();
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t w = tris[3 * incident[i] + k];
+        if (w != v) link_vertices.push_back(w);
+      }
+    std::sort(link_vertices.begin(), link_vertices.end());
+    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()), link_vertices.end());
+    const std::size_t m = link_vertices.size();
+    link_sets.reset(m);
+    link_degree.assign(m, 0);
+    link_forward.assign(m, 0);
+    auto local = [&](std::uint32_t w) {
+      return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
+    };
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t* tri = &tris[3 * incident[i]];
+      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      const std::uint32_t next = local(tri[(at + 1) % 3]), prev = local(tri[(at + 2) % 3]);
+      link_sets.unite(next, prev);
+      ++link_degree[next];
+      ++link_degree[prev];
+      ++link_forward[next];
+    }
+    std::size_t link_components = 0;
+    bool degree_ok = true;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      if (link_sets.find(i) == i) ++link_components;
+      if (link_degree[i] > 2) degree_ok = false;
+      if (link_vertices[i] < v) continue;
+      const std::uint32_t count = link_degree[i];  // the edge (v, w) with w > v
+      ++st.num_edges;
+      --comp_chi[sets.find(std::uint32_t(v))];
+      if (count == 1) ++st.num_border_edges;
+      if (count > 2) ++st.num_overshared_edges;
+      if (count != 2 && st.example_nonmanifold_edge_vertex == kNone) st.example_nonmanifold_edge_vertex = std::uint32_t(v);
+      if (count == 2 && link_forward[i] != 1) ++st.num_inconsistent_edges;
+    }
+    if (link_components != 1 || !degree_ok) {
+      ++st.num_nonmanifold_vertices;
+      if (st.example_nonmanifold_vertex == kNone) st.example_nonmanifold_vertex = std::uint32_t(v);
+    }
+  }
+}
+
+// The common case, decided per vertex without sorting: every vertex v's incident triangles
+// (v, next, prev) have distinct `next`s and, stepping from a triangle to the one whose next is its
+// prev, form one cycle through all of them. Then every edge (v, w) lies on exactly two triangles that
+// traverse it in opposite directions, and every link is one cycle: a closed, consistently oriented
+// 2-manifold. Counts the edges (at their lower endpoint) into st and comp_chi and returns true; at
+// the first vertex where this fails, returns false with st and comp_chi untouched.
+bool closed_manifold_links(std::size_t num_vertices, const std::vector<std::uint32_t>& tris,
+                           const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& incident,
+                           UnionFind& sets, std::vector<long long>& comp_chi, SurfaceTopology& st) {
+  std::vector<std::uint32_t> next, prev;
+  std::vector<std::uint32_t> edges_at(num_vertices, 0);  // edges (v, w), w > v
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t begin = offsets[v], end = offsets[v + 1];
+    const std::uint32_t m = end - begin;
+    if (m == 0) continue;
+    next.resize(m);
+    prev.resize(m);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t* tri = &tris[3 * incident[begin + i]];
+      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      next[i] = tri[(at + 1) % 3];
+      prev[i] = tri[(at + 2) % 3];
+    }
+    for (std::uint32_t i = 0; i < m; ++i)
+      for (std::uint32_t j = i + 1; j < m; ++j)
+        if (next[i] == next[j]) return false;
+    std::uint32_t i = 0, steps = 0;
+    do {
+      std::uint32_t j = 0;
+      while (j < m && next[j] != prev[i]) ++j;
+      if (j == m) return false;
+      i = j;
+      ++steps;
+    } while (i != 0 && steps <= m);
+    if (steps != m) return false;
+    for (std::uint32_t k = 0; k < m; ++k) edges_at[v] += next[k] > v ? 1u : 0u;
+  }
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    if (edges_at[v] == 0) continue;
+    st.num_edges += edges_at[v];
+    comp_chi[sets.find(std::uint32_t(v))] -= edges_at[v];
+  }
+  return true;
+}
+
+// Two tets over the same four vertices share all four faces. If a third tet has one of those faces,
+// that face is non-manifold; if none does, the two form a piece of their own: a second tet component,
+// or the whole mesh with no boundary face. A mesh with none of the three has no duplicate tets, and
+// their count (a second pass over the faces, reading every face's opposite vertex) is skipped.
+bool duplicates_possible(const TopologyReport& r) {
+  return r.num_nonmanifold_faces > 0 || r.num_tet_components != 1 || r.boundary_half_faces.empty();
+}
+
 }  // namespace
 
 TopologyReport analyze_topology(const TetMeshData& data) {
@@ -100,14 +211,13 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   std::vector<std::uint32_t>& bhf = r.boundary_half_faces;
   detail::group_faces(
       tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
-      [&](std::uint32_t, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
+      [&](std::uint32_t, const std::uint64_t*, const std::uint32_t* g, std::size_t n) {
         ++r.num_faces;
         const std::uint32_t h0 = detail::hf_of(g[0]);
         if (n == 1) {
           bhf.push_back(h0);
           return;
         }
-        count_duplicate_tets(tv, std::uint32_t(keys[0]), g, n, r);
         for (std::size_t k = 1; k < n; ++k) tet_sets.unite(h0 >> 2, detail::hf_of(g[k]) >> 2);
         if (n == 2) {
           ++r.num_interior_faces;
@@ -123,6 +233,13 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   std::sort(bhf.begin(), bhf.end());
   for (std::size_t t = 0; t < nt; ++t)
     if (!degenerate[t] && tet_sets.find(std::uint32_t(t)) == t) ++r.num_tet_components;
+  if (duplicates_possible(r)) {
+    detail::group_faces(
+        tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
+        [&](std::uint32_t, const std::uint64_t* keys, const std::uint32_t* g, std::size_t n) {
+          if (n >= 2) count_duplicate_tets(tv, std::uint32_t(keys[0]), g, n, r);
+        });
+  }
 
   // Boundary triangles (outward windings) -> the triangle-surface topology.
   const std::size_t nf = bhf.size();
@@ -215,58 +332,8 @@ SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::ve
       for (int k = 0; k < 3; ++k) incident[fill[tris[3 * t + k]]++] = t;
   }
 
-  // Per vertex v, its link: the opposite edge (next, prev) of each incident triangle (v, next, prev).
-  // A link vertex w is on as many triangles with v as its link degree, so the edges (v, w), w > v,
-  // are counted here with their multiplicity and direction (v -> w when w follows v), in (v, w)
-  // order. A manifold vertex has one link component and link degrees <= 2.
-  std::vector<std::uint32_t> link_vertices, link_degree, link_forward;
-  UnionFind link_sets(0);
-  for (std::size_t v = 0; v < num_vertices; ++v) {
-    const std::uint32_t begin = offsets[v], end = offsets[v + 1];
-    if (begin == end) continue;
-    link_vertices.clear();
-    for (std::uint32_t i = begin; i < end; ++i)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t w = tris[3 * incident[i] + k];
-        if (w != v) link_vertices.push_back(w);
-      }
-    std::sort(link_vertices.begin(), link_vertices.end());
-    link_vertices.erase(std::unique(link_vertices.begin(), link_vertices.end()), link_vertices.end());
-    const std::size_t m = link_vertices.size();
-    link_sets.reset(m);
-    link_degree.assign(m, 0);
-    link_forward.assign(m, 0);
-    auto local = [&](std::uint32_t w) {
-      return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
-    };
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t* tri = &tris[3 * incident[i]];
-      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-      const std::uint32_t next = local(tri[(at + 1) % 3]), prev = local(tri[(at + 2) % 3]);
-      link_sets.unite(next, prev);
-      ++link_degree[next];
-      ++link_degree[prev];
-      ++link_forward[next];
-    }
-    std::size_t link_components = 0;
-    bool degree_ok = true;
-    for (std::uint32_t i = 0; i < m; ++i) {
-      if (link_sets.find(i) == i) ++link_components;
-      if (link_degree[i] > 2) degree_ok = false;
-      if (link_vertices[i] < v) continue;
-      const std::uint32_t count = link_degree[i];  // the edge (v, w) with w > v
-      ++st.num_edges;
-      --comp_chi[sets.find(std::uint32_t(v))];
-      if (count == 1) ++st.num_border_edges;
-      if (count > 2) ++st.num_overshared_edges;
-      if (count != 2 && st.example_nonmanifold_edge_vertex == kNone) st.example_nonmanifold_edge_vertex = std::uint32_t(v);
-      if (count == 2 && link_forward[i] != 1) ++st.num_inconsistent_edges;
-    }
-    if (link_components != 1 || !degree_ok) {
-      ++st.num_nonmanifold_vertices;
-      if (st.example_nonmanifold_vertex == kNone) st.example_nonmanifold_vertex = std::uint32_t(v);
-    }
-  }
+  if (!closed_manifold_links(num_vertices, tris, offsets, incident, sets, comp_chi, st))
+    general_links(num_vertices, tris, offsets, incident, sets, comp_chi, st);
   st.euler = (long long)st.num_used_vertices - (long long)st.num_edges + (long long)st.num_triangles;
 
   st.genus_defined = st.num_triangles > 0 && st.num_border_edges == 0 && st.num_overshared_edges == 0 &&
