@@ -23,10 +23,11 @@
 #include <volmap/check/map_check.hpp>
 #include <volmap/check/metrics.hpp>
 
-#include <tbb/parallel_invoke.h>
 
 #include <chrono>
 #include <exception>
+#include <future>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -41,31 +42,74 @@ void release_tets(volmap::TetMeshData& mesh) {
   std::vector<std::int32_t>().swap(mesh.tet_labels);
 }
 
-// Validates `in` (exit 2 naming in_path unless it is a valid input) while `metrics` runs, on two
-// threads when there are two. The validation's error comes first, then the metrics' own.
-template <class Metrics>
-volmap::MetricsReport validate_input_beside_metrics(const volmap::TetMeshData& in, const std::string& in_path,
-                                                    Metrics&& metrics) {
+// The map in -> out read, checked and measured as two chains on two threads: the input is read, then
+// validated; the output is read, then (once the input is there) matched against it, freed of its
+// tet list and measured. The validation waits for that freeing, so that its scratch memory and the
+// output's tets are never held at once (peak memory below VOLMAP's). Errors come in the order a
+// user reads them: reading the input, its validity, reading the output, the match, the metrics.
+// Reader notes are kept for the files read.
+struct MeasuredMap {
+  volmap::TetMeshData in, out;  // out keeps its positions only
   volmap::MetricsReport report;
-  std::exception_ptr failed[2];
-  tbb::parallel_invoke(
-      [&] {
-        try {
-          volmap::require_valid_input_mesh(in, in_path);
-        } catch (...) {
-          failed[0] = std::current_exception();
-        }
-      },
-      [&] {
-        try {
-          report = metrics();
-        } catch (...) {
-          failed[1] = std::current_exception();
-        }
-      });
-  for (const std::exception_ptr& e : failed)
+};
+
+MeasuredMap read_and_measure(volmap_tools::InputMeshes& inputs, const std::string& in_path, const std::string& out_path,
+                             const volmap::MetricsOptions& options) {
+  MeasuredMap m;
+  volmap::TetMeshReadNotes notes[2];
+  std::exception_ptr reading_in, invalid_in, reading_out, measuring;
+  std::promise<void> in_read, out_matched;  // each set exactly once, on every path
+  std::shared_future<void> in_ready = in_read.get_future().share(), out_ready = out_matched.get_future().share();
+  auto input_chain = [&] {
+    try {
+      m.in = volmap::read_tet_mesh(in_path, notes[0]);
+    } catch (...) {
+      reading_in = std::current_exception();
+    }
+    in_read.set_value();
+    if (reading_in) return;
+    out_ready.wait();
+    try {
+      volmap::require_valid_input_mesh(m.in, in_path);
+    } catch (...) {
+      invalid_in = std::current_exception();
+    }
+  };
+  auto output_chain = [&] {
+    try {
+      m.out = volmap::read_tet_mesh(out_path, notes[1]);
+    } catch (...) {
+      reading_out = std::current_exception();
+    }
+    in_ready.wait();
+    if (reading_in || reading_out) {
+      out_matched.set_value();
+      return;
+    }
+    const std::string pair_name = out_path + " (against " + in_path + ")";
+    try {
+      volmap_tools::naming_file(pair_name, [&] { volmap::match_connectivity(m.in, m.out); });
+    } catch (...) {
+      measuring = std::current_exception();
+      out_matched.set_value();
+      return;
+    }
+    release_tets(m.out);  // matched: from here on the map is out.xyz over in.tets
+    out_matched.set_value();
+    try {
+      m.report = volmap_tools::naming_file(pair_name, [&] { return volmap::compute_metrics(m.in, m.out.xyz, options); });
+    } catch (...) {
+      measuring = std::current_exception();
+    }
+  };
+  std::thread output_thread(output_chain);  // an OS thread: the chains must run at the same time
+  input_chain();
+  output_thread.join();
+  if (!reading_in) inputs.keep(in_path, std::move(notes[0]));
+  if (!reading_out) inputs.keep(out_path, std::move(notes[1]));
+  for (const std::exception_ptr& e : {reading_in, invalid_in, reading_out, measuring})
     if (e) std::rethrow_exception(e);
-  return report;
+  return m;
 }
 
 nlohmann::json stats_json(const volmap::RangeStats& s) {
@@ -108,29 +152,21 @@ int main(int argc, char** argv) {
     files.input(original_path, "--original mesh");
     volmap::AtomicOutput* csv_out = csv_path.empty() ? nullptr : &files.output(csv_path, "--csv file");  // appended to
     volmap::AtomicOutput* vtu_out = vtu_path.empty() ? nullptr : &files.output(vtu_path, "--vtu output");
-    auto [in, out] = inputs.read_two(in_path, out_path);
-    const std::string pair_name = out_path + " (against " + in_path + ")";
-    try {
-      volmap_tools::naming_file(pair_name, [&] { volmap::match_connectivity(in, out); });
-    } catch (const volmap::Error&) {
-      volmap::require_valid_input_mesh(in, in_path);  // an invalid input is the problem to name first
-      throw;
-    }
-    release_tets(out);  // matched: from here on the map is out.xyz over in.tets
+    volmap::MetricsOptions options;
+    options.upper = upper;
+    options.keep_per_tet = vtu_out != nullptr;
+    options.emulate_volmap_singular_tets = emulate_singular;
+    MeasuredMap measured = read_and_measure(inputs, in_path, out_path, options);
+    const volmap::TetMeshData& in = measured.in;
+    volmap::TetMeshData& out = measured.out;
+    const volmap::MetricsReport& r = measured.report;
+    const double pair_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     std::size_t original_tets = 0, original_vertices = 0;
     if (!original_path.empty()) {
       const volmap::TetMeshData original = volmap_tools::read_input_tet_mesh(inputs, original_path);
       original_tets = original.num_tets();
       original_vertices = original.num_vertices();
     }
-    const double read_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    volmap::MetricsOptions options;
-    options.upper = upper;
-    options.keep_per_tet = vtu_out != nullptr;
-    options.emulate_volmap_singular_tets = emulate_singular;
-    const volmap::MetricsReport r = validate_input_beside_metrics(in, in_path, [&] {
-      return volmap_tools::naming_file(pair_name, [&] { return volmap::compute_metrics(in, out.xyz, options); });
-    });
     if (csv_out) {
       // Appended like VOLMAP's log, but atomically: the old content plus the new line is written to a
       // temporary file and renamed over the log (an interrupted run never leaves a torn line).
@@ -202,7 +238,9 @@ int main(int argc, char** argv) {
         j["size_ratio_tets"] = double(r.num_tets) / double(original_tets);
         j["size_ratio_vertices"] = double(in.num_vertices()) / double(original_vertices);
       }
-      j["seconds"] = {{"read", read_seconds}, {"compute", r.seconds}, {"total", total_seconds}};
+      // The pair is read, checked and measured on two threads at once: "compute" (the metrics alone)
+      // overlaps "read_check_compute".
+      j["seconds"] = {{"read_check_compute", pair_seconds}, {"compute", r.seconds}, {"total", total_seconds}};
       return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
     } else {
       std::cout << volmap::format_metrics_volmap(r);

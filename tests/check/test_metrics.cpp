@@ -421,6 +421,18 @@ TEST_CASE("tool: bad and mismatched inputs exit 2 with a reason") {
   const std::string reason = nlohmann::json::parse(r.out)["error"].get<std::string>();
   CHECK(reason.find("opposite orientation convention") != std::string::npos);
   CHECK(reason.find("hand_aigerman.mesh") != std::string::npos);
+  // The pair is read on two threads, but errors keep the reading order: the input's reading, its
+  // validity, then the output's reading.
+  const std::string missing_in = (dir / "no_such_input.mesh").string(), missing_out = (dir / "no_such_output.mesh").string();
+  r = vmap_test::run(tool + " " + quote(missing_in) + " " + quote(missing_out) + " --json");
+  CHECK(r.code == 2);
+  CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("no_such_input.mesh") != std::string::npos);
+  r = vmap_test::run(tool + " " + quote((dir / "hand_aigerman.mesh").string()) + " " + quote(missing_out) + " --json");
+  CHECK(r.code == 2);
+  CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("opposite orientation convention") != std::string::npos);
+  r = vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(missing_out) + " --json");
+  CHECK(r.code == 2);
+  CHECK(nlohmann::json::parse(r.out)["error"].get<std::string>().find("no_such_output.mesh") != std::string::npos);
   CHECK(vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(bone.string()) + " --upper abc").code == 2);
   CHECK(vmap_test::run(tool + " " + quote(bone.string()) + " " + quote(bone.string()) + " --upper 2").code == 2);
 }

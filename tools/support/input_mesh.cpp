@@ -1,10 +1,7 @@
 // InputMeshes: tet-mesh inputs read with their reader notes (see input_mesh.hpp).
 #include "support/input_mesh.hpp"
 
-#include <tbb/parallel_invoke.h>
-
 #include <cstdio>
-#include <exception>
 
 namespace volmap_tools {
 
@@ -20,26 +17,6 @@ volmap::TetMeshData InputMeshes::read(const std::string& path) {
   volmap::TetMeshData mesh = volmap::read_tet_mesh(path, notes);
   keep(path, std::move(notes));
   return mesh;
-}
-
-std::pair<volmap::TetMeshData, volmap::TetMeshData> InputMeshes::read_two(const std::string& first,
-                                                                          const std::string& second) {
-  std::pair<volmap::TetMeshData, volmap::TetMeshData> meshes;
-  volmap::TetMeshReadNotes notes[2];
-  std::exception_ptr failed[2];
-  auto read_one = [&](int k, const std::string& path, volmap::TetMeshData& mesh) {
-    try {
-      mesh = volmap::read_tet_mesh(path, notes[k]);
-    } catch (...) {
-      failed[k] = std::current_exception();
-    }
-  };
-  tbb::parallel_invoke([&] { read_one(0, first, meshes.first); }, [&] { read_one(1, second, meshes.second); });
-  for (const std::exception_ptr& e : failed)
-    if (e) std::rethrow_exception(e);
-  keep(first, std::move(notes[0]));
-  keep(second, std::move(notes[1]));
-  return meshes;
 }
 
 const volmap::TetMeshReadNotes* InputMeshes::notes(const std::string& path) const {

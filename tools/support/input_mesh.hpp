@@ -19,17 +19,14 @@ class InputMeshes {
   InputMeshes(std::string tool, const bool* json_mode) : tool_(std::move(tool)), json_mode_(json_mode) {}
 
   volmap::TetMeshData read(const std::string& path);
-  // Reads two meshes at once (on two threads when there are two): the notes are kept and printed in
-  // argument order, and when both reads fail the first path's error is thrown.
-  std::pair<volmap::TetMeshData, volmap::TetMeshData> read_two(const std::string& first, const std::string& second);
+  // Keeps the notes of a mesh read elsewhere (printed now unless in JSON mode).
+  void keep(const std::string& path, volmap::TetMeshReadNotes notes);
   const volmap::TetMeshReadNotes* notes(const std::string& path) const;
   bool empty() const { return notes_.empty(); }
   // {"<path>": {"format", "ignored_elements": {"<type>": count}, "dropped_vertices", "renumbered", "messages"}}
   nlohmann::json json() const;
 
  private:
-  void keep(const std::string& path, volmap::TetMeshReadNotes notes);
-
   std::string tool_;
   const bool* json_mode_;
   std::vector<std::pair<std::string, volmap::TetMeshReadNotes>> notes_;  // files with notes only
