@@ -53,6 +53,18 @@ struct MeasuredMap {
   volmap::MetricsReport report;
 };
 
+// Runs `step` and keeps what it throws in `failure` (true when it succeeded).
+template <class Step>
+bool capture(std::exception_ptr& failure, Step&& step) {
+  try {
+    step();
+    return true;
+  } catch (...) {
+    failure = std::current_exception();
+    return false;
+  }
+}
+
 MeasuredMap read_and_measure(volmap_tools::InputMeshes& inputs, const std::string& in_path, const std::string& out_path,
                              const volmap::MetricsOptions& options) {
   MeasuredMap m;
@@ -60,47 +72,26 @@ MeasuredMap read_and_measure(volmap_tools::InputMeshes& inputs, const std::strin
   std::exception_ptr reading_in, invalid_in, reading_out, measuring;
   std::promise<void> in_read, out_matched;  // each set exactly once, on every path
   std::shared_future<void> in_ready = in_read.get_future().share(), out_ready = out_matched.get_future().share();
+  const std::string pair_name = out_path + " (against " + in_path + ")";
   auto input_chain = [&] {
-    try {
-      m.in = volmap::read_tet_mesh(in_path, notes[0]);
-    } catch (...) {
-      reading_in = std::current_exception();
-    }
+    const bool read = capture(reading_in, [&] { m.in = volmap::read_tet_mesh(in_path, notes[0]); });
     in_read.set_value();
-    if (reading_in) return;
+    if (!read) return;
     out_ready.wait();
-    try {
-      volmap::require_valid_input_mesh(m.in, in_path);
-    } catch (...) {
-      invalid_in = std::current_exception();
-    }
+    capture(invalid_in, [&] { volmap::require_valid_input_mesh(m.in, in_path); });
   };
   auto output_chain = [&] {
-    try {
-      m.out = volmap::read_tet_mesh(out_path, notes[1]);
-    } catch (...) {
-      reading_out = std::current_exception();
-    }
+    const bool read = capture(reading_out, [&] { m.out = volmap::read_tet_mesh(out_path, notes[1]); });
     in_ready.wait();
-    if (reading_in || reading_out) {
-      out_matched.set_value();
-      return;
-    }
-    const std::string pair_name = out_path + " (against " + in_path + ")";
-    try {
+    const bool matched = read && !reading_in && capture(measuring, [&] {
       volmap_tools::naming_file(pair_name, [&] { volmap::match_connectivity(m.in, m.out); });
-    } catch (...) {
-      measuring = std::current_exception();
-      out_matched.set_value();
-      return;
-    }
-    release_tets(m.out);  // matched: from here on the map is out.xyz over in.tets
+      release_tets(m.out);  // matched: from here on the map is out.xyz over in.tets
+    });
     out_matched.set_value();
-    try {
+    if (!matched) return;
+    capture(measuring, [&] {
       m.report = volmap_tools::naming_file(pair_name, [&] { return volmap::compute_metrics(m.in, m.out.xyz, options); });
-    } catch (...) {
-      measuring = std::current_exception();
-    }
+    });
   };
   std::thread output_thread(output_chain);  // an OS thread: the chains must run at the same time
   input_chain();
