@@ -65,8 +65,9 @@ class FileWindow {
   // read_file_bytes.
   static bool suits(const std::string& path);
 
-  // Drops the bytes before `keep_from` (inside the current window), reads on, and sets [begin, end)
-  // to the new window. Returns false, leaving everything as it was, when the file has no bytes left.
+  // Drops the bytes before `keep_from` (inside the current window; null for the first window, which
+  // also skips a byte-order mark), reads on, and sets [begin, end) to the new window. Returns false,
+  // leaving everything as it was, when the file has no bytes left.
   bool advance(const char* keep_from, const char*& begin, const char*& end);
   // Bytes of the file after `p` (a position in the current window), by its size when opened.
   std::size_t remaining_after(const char* p) const;
@@ -104,7 +105,8 @@ class Tokenizer {
       : begin_(begin), pos_(begin), end_(end), hash_comments_(hash_comments) {}
   // Over a sliding window: skip_space moves the window on when it reaches its end, so Token texts
   // and saved States are valid until the next call that skips whitespace (next, next_unsigned, peek,
-  // skip_space); the bulk fast paths never move it (they report the window's end as a failure).
+  // skip_space); the bulk fast paths never move it (they report the window's end as a failure), and
+  // skip_rest_of_line / advance_to stay inside it (binary payloads need a whole-file Tokenizer).
   Tokenizer(FileWindow& window, bool hash_comments)
       : begin_(nullptr), pos_(nullptr), end_(nullptr), window_(&window), hash_comments_(hash_comments) {
     window.advance(nullptr, begin_, end_);
@@ -228,7 +230,7 @@ class Tokenizer {
           ++pos_;
         }
       }
-    } while (window_ && window_->advance(pos_, begin_, end_) && (pos_ = begin_, true));
+    } while (window_ && move_window());
   }
   // Moves to the start of the next line (used after a keyword line whose rest is binary data).
   void skip_rest_of_line() {
@@ -254,6 +256,12 @@ class Tokenizer {
   }
 
  private:
+  // The window's next lines, from pos_ on (false at the end of the file).
+  bool move_window() {
+    if (!window_->advance(pos_, begin_, end_)) return false;
+    pos_ = begin_;
+    return true;
+  }
   // The leading decimal digits of the 8 bytes at p (SWAR): their count n (8 when all 8 are digits,
   // then `value` is not set) and, for n < 8, their value.
   static int swar_digits(const char* p, std::uint32_t& value) {
