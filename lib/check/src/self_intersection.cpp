@@ -200,42 +200,65 @@ struct NodeTask {
 
 inline std::uint32_t node_size(const BoxTree::Node& n) { return n.end - n.begin; }
 
+// How a task splits. kLeaves: both nodes are leaves, so its pairs are enumerated item by item;
+// otherwise `count` subtasks cover its pairs (0 when the two nodes' boxes are disjoint): a self task
+// splits into its children's own pairs and the pairs across them, an across task into the halves of
+// its larger node.
+struct TaskSplit {
+  bool leaves = false;
+  int count = 0;
+  NodeTask parts[3];
+};
+
+TaskSplit split_task(const BoxTree& tree, const NodeTask& task) {
+  TaskSplit split;
+  const BoxTree::Node& a = tree.nodes[task.a];
+  if (task.self) {
+    if (a.left == 0) {
+      split.leaves = true;
+    } else {
+      split.count = 3;
+      split.parts[0] = {a.left, a.left, true};
+      split.parts[1] = {a.left + 1, a.left + 1, true};
+      split.parts[2] = {a.left, a.left + 1, false};
+    }
+    return split;
+  }
+  const BoxTree::Node& b = tree.nodes[task.b];
+  if (!boxes_overlap(a.box, b.box)) return split;
+  if (a.left == 0 && b.left == 0) {
+    split.leaves = true;
+    return split;
+  }
+  split.count = 2;
+  if (b.left == 0 || (a.left != 0 && node_size(a) >= node_size(b))) {
+    split.parts[0] = {a.left, task.b, false};
+    split.parts[1] = {a.left + 1, task.b, false};
+  } else {
+    split.parts[0] = {task.a, b.left, false};
+    split.parts[1] = {task.a, b.left + 1, false};
+  }
+  return split;
+}
+
 // Expands the root's task breadth-first into at least `wanted` tasks (fewer when the tree runs out),
 // in a fixed order, so the parallel drivers' results merge deterministically.
 std::vector<NodeTask> split_traversal(const BoxTree& tree, std::size_t wanted) {
   std::vector<NodeTask> tasks;
   if (tree.nodes.empty()) return tasks;
   tasks.push_back({0, 0, true});
-  while (tasks.size() < wanted) {
+  bool expanded = true;
+  while (expanded && tasks.size() < wanted) {
     std::vector<NodeTask> next;
     next.reserve(3 * tasks.size());
-    bool expanded = false;
+    expanded = false;
     for (const NodeTask& task : tasks) {
-      const BoxTree::Node& a = tree.nodes[task.a];
-      const BoxTree::Node& b = tree.nodes[task.b];
-      if (task.self) {
-        if (a.left == 0) {
-          next.push_back(task);
-          continue;
-        }
-        next.push_back({a.left, a.left, true});
-        next.push_back({a.left + 1, a.left + 1, true});
-        next.push_back({a.left, a.left + 1, false});
-        expanded = true;
-        continue;
-      }
-      if (!boxes_overlap(a.box, b.box)) continue;
-      if (a.left == 0 && b.left == 0) {
-        next.push_back(task);
-        continue;
-      }
-      const bool split_a = b.left == 0 || (a.left != 0 && node_size(a) >= node_size(b));
-      const std::uint32_t child = split_a ? a.left : b.left;
-      for (std::uint32_t c : {child, child + 1}) next.push_back(split_a ? NodeTask{c, task.b, false} : NodeTask{task.a, c, false});
-      expanded = true;
+      const TaskSplit split = split_task(tree, task);
+      if (split.leaves) next.push_back(task);
+      next.insert(next.end(), split.parts, split.parts + split.count);
+      expanded = expanded || split.count > 0;
     }
     tasks.swap(next);
-    if (!expanded) break;
   }
   return tasks;
 }
@@ -243,42 +266,27 @@ std::vector<NodeTask> split_traversal(const BoxTree& tree, std::size_t wanted) {
 // Calls visit(item, item) for every pair of distinct items under the task whose leaf boxes overlap.
 template <class Visit>
 void run_traversal(const BoxTree& tree, const NodeTask& root, Visit&& visit) {
-  NodeTask stack[192];  // a self task pushes 3, an across task 2, per level of a depth far below 64
+  NodeTask stack[192];  // each split adds at most 2 net entries per tree level, of depth below 32
   int top = 0;
   stack[top++] = root;
   while (top > 0) {
     const NodeTask task = stack[--top];
+    const TaskSplit split = split_task(tree, task);
+    for (int k = split.count; k-- > 0;) stack[top++] = split.parts[k];  // the first part on top
+    if (!split.leaves) continue;
     const BoxTree::Node& a = tree.nodes[task.a];
     if (task.self) {
-      if (a.left != 0) {
-        stack[top++] = {a.left, a.left + 1, false};
-        stack[top++] = {a.left + 1, a.left + 1, true};
-        stack[top++] = {a.left, a.left, true};
-        continue;
-      }
       for (std::uint32_t i = a.begin; i < a.end; ++i)
         for (std::uint32_t j = i + 1; j < a.end; ++j)
           if (boxes_overlap(tree.leaf_boxes[i], tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
       continue;
     }
     const BoxTree::Node& b = tree.nodes[task.b];
-    if (!boxes_overlap(a.box, b.box)) continue;
-    if (a.left == 0 && b.left == 0) {
-      for (std::uint32_t i = a.begin; i < a.end; ++i) {
-        const Box3& box = tree.leaf_boxes[i];
-        if (!boxes_overlap(box, b.box)) continue;
-        for (std::uint32_t j = b.begin; j < b.end; ++j)
-          if (boxes_overlap(box, tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
-      }
-      continue;
-    }
-    const bool split_a = b.left == 0 || (a.left != 0 && node_size(a) >= node_size(b));
-    if (split_a) {
-      stack[top++] = {a.left + 1, task.b, false};
-      stack[top++] = {a.left, task.b, false};
-    } else {
-      stack[top++] = {task.a, b.left + 1, false};
-      stack[top++] = {task.a, b.left, false};
+    for (std::uint32_t i = a.begin; i < a.end; ++i) {
+      const Box3& box = tree.leaf_boxes[i];
+      if (!boxes_overlap(box, b.box)) continue;
+      for (std::uint32_t j = b.begin; j < b.end; ++j)
+        if (boxes_overlap(box, tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
     }
   }
 }

@@ -65,6 +65,15 @@ void count_duplicate_tets(const std::uint32_t* tv, std::uint32_t face_max, const
   }
 }
 
+// Triangle (v, next, prev) as seen from its corner v (one of its three ids).
+struct Corner {
+  std::uint32_t next, prev;
+};
+inline Corner corner_at(const std::uint32_t* tri, std::uint32_t v) {
+  const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+  return {tri[(at + 1) % 3], tri[(at + 2) % 3]};
+}
+
 // Per vertex v, its link: the opposite edge (next, prev) of each incident triangle (v, next, prev).
 // A link vertex w is on as many triangles with v as its link degree, so the edges (v, w), w > v,
 // are counted here with their multiplicity and direction (v -> w when w follows v), in (v, w)
@@ -93,9 +102,8 @@ void general_links(std::size_t num_vertices, const std::vector<std::uint32_t>& t
       return std::uint32_t(std::lower_bound(link_vertices.begin(), link_vertices.end(), w) - link_vertices.begin());
     };
     for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t* tri = &tris[3 * incident[i]];
-      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-      const std::uint32_t next = local(tri[(at + 1) % 3]), prev = local(tri[(at + 2) % 3]);
+      const Corner c = corner_at(&tris[3 * incident[i]], std::uint32_t(v));
+      const std::uint32_t next = local(c.next), prev = local(c.prev);
       link_sets.unite(next, prev);
       ++link_degree[next];
       ++link_degree[prev];
@@ -140,10 +148,9 @@ bool closed_manifold_links(std::size_t num_vertices, const std::vector<std::uint
     next.resize(m);
     prev.resize(m);
     for (std::uint32_t i = 0; i < m; ++i) {
-      const std::uint32_t* tri = &tris[3 * incident[begin + i]];
-      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-      next[i] = tri[(at + 1) % 3];
-      prev[i] = tri[(at + 2) % 3];
+      const Corner c = corner_at(&tris[3 * incident[begin + i]], std::uint32_t(v));
+      next[i] = c.next;
+      prev[i] = c.prev;
     }
     for (std::uint32_t i = 0; i < m; ++i)
       for (std::uint32_t j = i + 1; j < m; ++j)

@@ -150,12 +150,12 @@ FileWindow::FileWindow(const std::string& path, const ReadOptions& options, std:
     : path_(path), options_(options), buffer_(std::max<std::size_t>(window_bytes, 4096)) {
   if (options.text_prefix != 0 || options.max_line != 0)
     throw Error(ErrorKind::Unsupported, path, 0, "internal: a file window vets text and byte-order marks only");
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw_io(path, "is a directory, not a file");
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) throw_io(path, std::string("cannot open: ") + std::strerror(errno));
-  const auto size = std::filesystem::file_size(path, ec);
-  file_size_ = ec ? 0 : static_cast<std::size_t>(size);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);  // a regular file (suits): its size or an error
+  if (ec) throw_io(path, "is not a regular file");
+  file_size_ = static_cast<std::size_t>(size);
 }
 
 FileWindow::~FileWindow() {

@@ -56,6 +56,7 @@ FileBytes read_file_bytes(const std::string& path, const ReadOptions& options = 
 // (`text` and `strip_bom` only) as they arrive. A line longer than the window grows the window.
 class FileWindow {
  public:
+  // `path` must suit (below); a path that changed into something else since is refused as Io.
   FileWindow(const std::string& path, const ReadOptions& options, std::size_t window_bytes = kHugePageBytes);
   ~FileWindow();
   FileWindow(const FileWindow&) = delete;

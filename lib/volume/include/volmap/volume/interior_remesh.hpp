@@ -4,8 +4,9 @@
 // input's (same vertex ids, as a set of faces), whose vertices 0..nv−1 are the input's vertices at
 // bit-identical positions, with any new vertex appended in the interior, and whose tets are all
 // VOLMAP-positive (orient3d > 0); tet labels, if any, one per tet. The mapper never trusts it:
-// interior_remesh_problem checks all of this exactly before the remeshed source is used. The volume wing has no mesher of its own; the
-// tools pass TetGen's (volmap/tetgen/remesh.hpp), tests may pass any function.
+// interior_remesh_problem checks all of this exactly before the remeshed source is used. The volume
+// wing has no mesher of its own; the tools pass TetGen's (volmap/tetgen/remesh.hpp), tests may pass
+// any function.
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
