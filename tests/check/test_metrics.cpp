@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -89,6 +90,32 @@ TEST_CASE("analytic maps: identity; uniform scale; rotation; stretch") {
   r = compute_metrics(grid, transformed(grid, A), o);
   CHECK(r.energy[1].max == 10.0);
   CHECK(r.energy[2].min == 10.0);
+}
+
+TEST_CASE("scale-normalised energies of stretches diag(a,1,1) against the singular values of k·J") {
+  // k = a^(−1/3) scales the output back to the input's volume: k·J = diag(a·k, k, k). a = 60 puts
+  // ‖k·J‖² above (√3 + √upper)², where ARAP clamps without its Σsᵢ; a = 4, 20 and 34 (ARAP 91) do not.
+  const TetMeshData grid = vmap_test::kuhn_grid(2);
+  for (const double a : {4.0, 20.0, 34.0, 60.0}) {
+    CAPTURE(a);
+    const double A[3][3] = {{a, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const MetricsReport r = compute_metrics(grid, transformed(grid, A));
+    const double k = std::cbrt(1.0 / a);
+    CHECK(r.scale_factor == doctest::Approx(k));
+    const double s[3] = {a * k, k, k};
+    const double i1 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+    const double expected[5] = {
+        i1 / (3 * std::pow(s[0] * s[1] * s[2], 2.0 / 3.0)),
+        i1,
+        i1 + 1 / (s[0] * s[0]) + 1 / (s[1] * s[1]) + 1 / (s[2] * s[2]),
+        (s[0] - 1) * (s[0] - 1) + (s[1] - 1) * (s[1] - 1) + (s[2] - 1) * (s[2] - 1),
+        (s[0] / s[1] + s[1] / s[0]) * (s[2] / s[0] + s[0] / s[2]) * (s[1] / s[2] + s[2] / s[1]) / 8};
+    const double lower[5] = {1, 3, 6, 0, 1};
+    for (int e = 0; e < 5; ++e) {
+      CAPTURE(e);
+      CHECK(r.energy_scaled[e].mean == doctest::Approx(std::clamp(expected[e], lower[e], 100.0)));
+    }
+  }
 }
 
 TEST_CASE("regular tet: TRR −1; quality 1; scaled Jacobian +1 (VOLMAP-positive)") {

@@ -90,13 +90,15 @@ void valid_tet_energies(const TetContext& c, const double* const pin[4], const d
     std::fill(r.scaled, r.scaled + kEnergies, c.upper);
   } else {
     const Invariants v = invariants_of(j, det3(j));
-    if (!closed_form_energies(v, c.bounds, r.energy)) {
+    ClosedFormParts parts;
+    if (!closed_form_energies(v, c.bounds, r.energy, parts)) {
       take_svd();
       compat_energies(svd, c.upper, r.energy);
+      parts = ClosedFormParts{};
     }
     const double det_in = det3(f_in);
     if (det_in != 0.0) {
-      scaled_energies(Invariants{v.i1, v.i2, det3(f_out) / det_in}, c.scale, c.upper, r.scaled);
+      scaled_energies(Invariants{v.i1, v.i2, det3(f_out) / det_in}, c.scale, c.bounds, parts, r.scaled);
     } else {
       std::fill(r.scaled, r.scaled + kEnergies, c.upper);
     }

@@ -180,24 +180,35 @@ struct ClosedFormBounds {
                       (std::sqrt(3.0) + std::sqrt(upper_bound * (1 + kAgreementBand)))) {}
 };
 
-// Conformal = I1·|d|^{−2/3}/3, SymDir = I1 + I2/d², MIPS3D = (I1·I2 − d²)/(8d²), into raw[0], raw[2], raw[4].
-inline void scale_free_energies(const Invariants& v, double* raw) {
+// The two costly intermediates of the closed forms of one J, kept for the energies of k·J, which
+// share them: |d|^{−2/3} (Conformal and MIPS3D do not change with k) and Σsᵢ (scales with k).
+// NaN until computed.
+struct ClosedFormParts {
+  double inverse_cbrt_d2 = std::numeric_limits<double>::quiet_NaN();
+  double sum_sv = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Conformal = I1·|d|^{−2/3}/3, SymDir = I1 + I2/d², MIPS3D = (I1·I2 − d²)/(8d²), into raw[0], raw[2],
+// raw[4]; r = |d|^{−2/3}.
+inline void scale_free_energies(const Invariants& v, double r, double* raw) {
   const double d2 = v.det * v.det, inv_d2 = 1.0 / d2;
-  const double r = inverse_cube_root(d2);
   raw[0] = v.i1 * r * (1.0 / 3.0);
   raw[2] = v.i1 + v.i2 * inv_d2;
   raw[4] = (v.i1 * v.i2 - d2) * inv_d2 * 0.125;
 }
 
 // The five clamped compat energies from the invariants of the compat J (d = det of that J). Returns
-// false (out unspecified) when the tet must take the SVD path (see the file comment).
-inline bool closed_form_energies(const Invariants& v, const ClosedFormBounds& bounds, double* out) {
+// false (out unspecified) when the tet must take the SVD path (see the file comment). `parts`
+// receives the intermediates it computed.
+inline bool closed_form_energies(const Invariants& v, const ClosedFormBounds& bounds, double* out,
+                                 ClosedFormParts& parts) {
   if (!invariants_in_range(v)) return false;
   const double upper = bounds.upper;
   double raw[kEnergies];
   bool clamped[kEnergies] = {false, false, false, false, false};  // known to clamp to upper
   if (det_accurate(v)) {
-    scale_free_energies(v, raw);
+    parts.inverse_cbrt_d2 = inverse_cube_root(v.det * v.det);
+    scale_free_energies(v, parts.inverse_cbrt_d2, raw);
   } else if (upper < kDegenerateEnergyFloor) {
     clamped[0] = clamped[2] = clamped[4] = true;
   } else {
@@ -208,6 +219,7 @@ inline bool closed_form_energies(const Invariants& v, const ClosedFormBounds& bo
     clamped[3] = true;  // ARAP ≥ (‖s‖ − √3)² whatever the singular values
   } else if (det_accurate(v)) {
     const double x = sum_of_singular_values(v);
+    parts.sum_sv = x;
     raw[3] = v.i1 - 2 * x + 3;
     if (raw[3] < kArapCancellation * (v.i1 + 2 * x + 3)) return false;
   } else {
@@ -225,18 +237,27 @@ inline bool closed_form_energies(const Invariants& v, const ClosedFormBounds& bo
 }
 
 // Energies of k·J (the output scaled by k about the origin) from the invariants of J, with d = det J
-// taken as det F_out / det F_in (no cancellation in the product of singular values). Not a VOLMAP
-// field: no compatibility band.
-inline void scaled_energies(const Invariants& v, double k, double upper, double* out) {
+// taken as det F_out / det F_in (no cancellation in the product of singular values), reusing the
+// intermediates of J's closed forms where they were computed (|d|^{−2/3} and Σsᵢ of J then come from
+// det J itself, which agrees with det F_out / det F_in to rounding where the closed forms apply). Not
+// a VOLMAP field: no compatibility band.
+inline void scaled_energies(const Invariants& v, double k, const ClosedFormBounds& bounds, const ClosedFormParts& parts,
+                            double* out) {
+  const double upper = bounds.upper;
   const double k2 = k * k;
   Invariants s;
   s.i1 = v.i1 * k2;
   s.i2 = v.i2 * k2 * k2;
   s.det = v.det * k2 * k;
   double raw[kEnergies];
-  scale_free_energies(s, raw);
+  const bool have_cbrt = !std::isnan(parts.inverse_cbrt_d2);
+  scale_free_energies(s, have_cbrt ? parts.inverse_cbrt_d2 : inverse_cube_root(s.det * s.det), raw);
+  if (have_cbrt) raw[0] = v.i1 * parts.inverse_cbrt_d2 * (1.0 / 3.0);  // scale-free: J's own value
   raw[1] = s.i1;
-  raw[3] = s.i1 - 2 * sum_of_singular_values(s) + 3;
+  if (s.i1 >= bounds.arap_clamp_i1)
+    raw[3] = upper;  // ARAP ≥ (‖s‖ − √3)² ≥ upper (see ClosedFormBounds)
+  else
+    raw[3] = s.i1 - 2 * (std::isnan(parts.sum_sv) ? sum_of_singular_values(s) : k * parts.sum_sv) + 3;
   for (int e = 0; e < kEnergies; ++e) out[e] = clamp_energy(raw[e], kLowerBound[e], upper);
 }
 
