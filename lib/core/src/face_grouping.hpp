@@ -76,9 +76,6 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
       hfp[pos] = std::uint32_t(4 * t + i) | (parity << 31);
     }
   }
-  auto less = [](std::uint64_t ka, std::uint32_t ha, std::uint64_t kb, std::uint32_t hb) {
-    return ka < kb || (ka == kb && hf_of(ha) < hf_of(hb));
-  };
   auto process = [&](std::size_t first_vertex, std::size_t last_vertex) {
   std::vector<std::uint32_t> perm;
   std::vector<std::uint64_t> tmp_keys;
@@ -89,12 +86,14 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
     std::uint64_t* k = keys.data() + begin;
     std::uint32_t* h = hfp.data() + begin;
     const std::size_t n = end - begin;
-    if (n <= 48) {  // insertion sort in place (typical buckets hold ~20 faces)
+    // A bucket's entries arrive in increasing hf (tets are scattered in order), so sorting by key
+    // stably keeps each group sorted by hf.
+    if (n <= 48) {  // insertion sort (stable) in place (typical buckets hold ~20 faces)
       for (std::size_t a = 1; a < n; ++a) {
         const std::uint64_t kk = k[a];
         const std::uint32_t hh = h[a];
         std::size_t b = a;
-        while (b > 0 && less(kk, hh, k[b - 1], h[b - 1])) {
+        while (b > 0 && kk < k[b - 1]) {
           k[b] = k[b - 1];
           h[b] = h[b - 1];
           --b;
@@ -105,7 +104,7 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
     } else {  // large buckets (high-valence vertices): sort a permutation
       perm.resize(n);
       std::iota(perm.begin(), perm.end(), 0u);
-      std::sort(perm.begin(), perm.end(), [&](std::uint32_t x, std::uint32_t y) { return less(k[x], h[x], k[y], h[y]); });
+      std::sort(perm.begin(), perm.end(), [&](std::uint32_t x, std::uint32_t y) { return k[x] < k[y] || (k[x] == k[y] && x < y); });
       tmp_keys.assign(k, k + n);
       tmp_hfp.assign(h, h + n);
       for (std::size_t a = 0; a < n; ++a) {
