@@ -362,3 +362,114 @@ TEST_CASE("randomized: the accelerated driver finds exactly the brute-force pair
   MESSAGE(n << " triangles, " << brute << " intersecting pairs");
   CHECK(brute > 0);
 }
+
+namespace {
+
+// Closed surfaces whose vertex fans are mostly injective under an axis projection (the driver then
+// settles adjacent pairs per vertex) with dents that fold some fans: the driver must still find
+// exactly the brute-force pairs, adjacent ones included.
+struct BruteForce {
+  std::size_t pairs = 0, adjacent_pairs = 0;
+  std::vector<volmap::TrianglePair> first;
+};
+
+// Pairs of non-degenerate triangles that intersect (the driver reports degenerate ones apart).
+BruteForce brute_force(const Soup& s, std::size_t max_first) {
+  BruteForce b;
+  const std::size_t n = s.tris.size() / 3;
+  auto degenerate = [&](std::size_t i) {
+    const double* X = s.xyz.data();
+    return volmap::triangle_is_degenerate(X + 3 * s.tris[3 * i], X + 3 * s.tris[3 * i + 1], X + 3 * s.tris[3 * i + 2]);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const std::uint32_t* t = &s.tris[3 * i];
+      const std::uint32_t* u = &s.tris[3 * j];
+      if (degenerate(i) || degenerate(j) || !volmap::triangle_pair_intersects(s.xyz.data(), t, u)) continue;
+      ++b.pairs;
+      const bool adjacent = std::count(u, u + 3, t[0]) + std::count(u, u + 3, t[1]) + std::count(u, u + 3, t[2]) > 0;
+      b.adjacent_pairs += adjacent;
+      if (b.first.size() < max_first) b.first.push_back({std::uint32_t(i), std::uint32_t(j)});
+    }
+  return b;
+}
+
+// The boundary of the cube [0, n]³ in unit squares, two triangles each, wound outwards.
+Soup grid_cube_surface(int n) {
+  Soup s;
+  std::vector<std::uint32_t> id((n + 1) * (n + 1) * (n + 1), 0xFFFFFFFFu);
+  auto vertex = [&](int x, int y, int z) {
+    std::uint32_t& v = id[std::size_t((x * (n + 1) + y) * (n + 1) + z)];
+    if (v == 0xFFFFFFFFu) v = s.v(x, y, z);
+    return v;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side <= 1; ++side)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          int corner[4][3];
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            corner[k][axis] = side * n;
+            corner[k][(axis + 1) % 3] = i + di[k];
+            corner[k][(axis + 2) % 3] = j + dj[k];
+          }
+          std::uint32_t q[4];
+          for (int k = 0; k < 4; ++k) q[k] = vertex(corner[k][0], corner[k][1], corner[k][2]);
+          if (side == 1) {
+            s.t(q[0], q[1], q[2]);
+            s.t(q[0], q[2], q[3]);
+          } else {
+            s.t(q[0], q[2], q[1]);
+            s.t(q[0], q[3], q[2]);
+          }
+        }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("closed surfaces with folded fans: the driver finds exactly the brute-force pairs") {
+  std::mt19937 rng(2024);
+  for (const bool integer_dents : {true, false}) {
+    CAPTURE(integer_dents);
+    Soup s = grid_cube_surface(5);
+    const volmap::SelfIntersectionResult clean = find_self_intersections(s.xyz, s.tris);
+    CHECK(clean.clean());
+    // Move some vertices: by small integers (exact coplanar folds and touching) or by real offsets.
+    const std::size_t nv = s.xyz.size() / 3;
+    std::uniform_int_distribution<std::size_t> pick(0, nv - 1);
+    std::uniform_int_distribution<int> step(-2, 2);
+    std::uniform_real_distribution<double> offset(-1.5, 1.5);
+    for (int k = 0; k < 12; ++k) {
+      const std::size_t v = pick(rng);
+      for (int c = 0; c < 3; ++c) s.xyz[3 * v + c] += integer_dents ? double(step(rng)) : offset(rng);
+    }
+    const BruteForce expected = brute_force(s, 5);
+    volmap::SelfIntersectionOptions options;
+    options.max_reported = 5;
+    for (const bool parallel : {false, true}) {
+      options.parallel = parallel;
+      const volmap::SelfIntersectionResult r = find_self_intersections(s.xyz, s.tris, options);
+      CHECK(r.intersecting_pairs == expected.pairs);
+      CHECK(r.first_pairs == expected.first);
+    }
+    MESSAGE((s.tris.size() / 3) << " triangles, " << expected.pairs << " intersecting pairs, " << expected.adjacent_pairs
+                              << " of them adjacent");
+    CHECK(expected.adjacent_pairs > 0);  // folds inside fans: the per-vertex settling must not hide them
+    CHECK(expected.pairs > expected.adjacent_pairs);
+  }
+  SUBCASE("a closed fan whose projection winds twice around its vertex") {
+    // Ring b_k at angle 4πk/7 below a: every projected triangle (a, b_{k+1}, b_k) has the same
+    // orientation, but the ring is the star polygon {7/2}, so triangles sharing only a cross.
+    Soup fan;
+    const std::uint32_t a = fan.v(0, 0, 0);
+    std::uint32_t ring[7];
+    for (int k = 0; k < 7; ++k)
+      ring[k] = fan.v(std::cos(4 * M_PI * k / 7), std::sin(4 * M_PI * k / 7), -1.0 - 0.01 * k);
+    for (int k = 0; k < 7; ++k) fan.t(a, ring[(k + 1) % 7], ring[k]);
+    const BruteForce expected = brute_force(fan, 0);
+    CHECK(expected.pairs > 0);
+    CHECK(find_self_intersections(fan.xyz, fan.tris).intersecting_pairs == expected.pairs);
+  }
+}

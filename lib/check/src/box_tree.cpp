@@ -28,7 +28,8 @@ void grow(Box3& box, const Box3& other) {
 // Morton order of the box centres, ranges halved top-down, boxes merged bottom-up. Children are
 // created after their parent, so a reverse sweep over the node array sees every child before its
 // parent.
-BoxTree build_box_tree(const std::vector<Box3>& boxes) {
+BoxTree build_box_tree(const std::vector<Box3>& boxes, std::uint32_t leaf_size) {
+  leaf_size = std::max<std::uint32_t>(leaf_size, 1);
   const std::size_t n = boxes.size();
   BoxTree tree;
   tree.order.resize(n);
@@ -53,11 +54,11 @@ BoxTree build_box_tree(const std::vector<Box3>& boxes) {
     tree.order[i] = std::uint32_t(keys[i] & 0xFFFFFFFFu);
     tree.leaf_boxes[i] = boxes[tree.order[i]];
   }
-  tree.nodes.reserve(2 * (n / kBoxTreeLeafSize + 1));
+  tree.nodes.reserve(2 * (n / leaf_size + 1));
   tree.nodes.push_back(BoxTree::Node{Box3{}, 0, std::uint32_t(n), 0});
   for (std::size_t at = 0; at < tree.nodes.size(); ++at) {  // top-down: split ranges in half
     const std::uint32_t begin = tree.nodes[at].begin, end = tree.nodes[at].end;
-    if (end - begin <= kBoxTreeLeafSize) continue;
+    if (end - begin <= leaf_size) continue;
     const std::uint32_t mid = begin + (end - begin) / 2;
     const std::uint32_t left = std::uint32_t(tree.nodes.size());
     tree.nodes[at].left = left;

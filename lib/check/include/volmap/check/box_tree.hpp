@@ -3,9 +3,10 @@
 // Conventions: boxes are closed (touching boxes overlap); comparisons are plain double comparisons,
 // which are exact, so a query never misses an item whose box touches the query box. Items are ordered
 // along a Morton (Z-order) curve of their box centres; the tree halves that order top-down (leaves of
-// at most kBoxTreeLeafSize items), so `order` is the items' position along the curve and every node
+// at most a leaf size of items), so `order` is the items' position along the curve and every node
 // covers a contiguous range [begin, end) of positions. Nodes live in one array; a parent comes before
 // its children, the children of an inner node are `left` and `left + 1`, and `left == 0` marks a leaf.
+// kBoxTreeLeafSize is the default leaf size (build_box_tree can take another).
 #pragma once
 
 #include <cstdint>
@@ -96,6 +97,8 @@ struct BoxTree {
 };
 
 // Builds the tree over boxes[0..n): O(n log n) (one sort of 64-bit Morton keys), the rest O(n).
-BoxTree build_box_tree(const std::vector<Box3>& boxes);
+// Leaves hold at most leaf_size items (0 counts as 1): small leaves suit single queries, larger ones
+// a tree tested against itself leaf by leaf in vector lanes.
+BoxTree build_box_tree(const std::vector<Box3>& boxes, std::uint32_t leaf_size = kBoxTreeLeafSize);
 
 }  // namespace volmap
