@@ -215,14 +215,14 @@ TopologyReport analyze_topology(const TetMeshData& data) {
 
   // Faces: multiplicities, boundary half-faces, tet adjacency.
   UnionFind tet_sets(nt);
-  std::vector<std::uint32_t>& bhf = r.boundary_half_faces;
+  std::vector<std::uint64_t> boundary_bits((4 * nt + 63) / 64, 0);  // bit h: half-face h is on the boundary
   detail::group_faces(
       tv, nt, nv, [&degenerate](std::size_t t) { return degenerate[t] != 0; },
       [&](std::uint32_t, const std::uint64_t*, const std::uint32_t* g, std::size_t n) {
         ++r.num_faces;
         const std::uint32_t h0 = detail::hf_of(g[0]);
         if (n == 1) {
-          bhf.push_back(h0);
+          boundary_bits[h0 >> 6] |= std::uint64_t(1) << (h0 & 63);
           return;
         }
         for (std::size_t k = 1; k < n; ++k) tet_sets.unite(h0 >> 2, detail::hf_of(g[k]) >> 2);
@@ -237,7 +237,13 @@ TopologyReport analyze_topology(const TetMeshData& data) {
           if (r.example_nonmanifold_face == kNone) r.example_nonmanifold_face = h0;
         }
       });
-  std::sort(bhf.begin(), bhf.end());
+  std::vector<std::uint32_t>& bhf = r.boundary_half_faces;  // in increasing order
+  std::size_t num_boundary = 0;
+  for (const std::uint64_t word : boundary_bits) num_boundary += std::size_t(__builtin_popcountll(word));
+  bhf.reserve(num_boundary);
+  for (std::size_t w = 0; w < boundary_bits.size(); ++w)
+    for (std::uint64_t word = boundary_bits[w]; word != 0; word &= word - 1)
+      bhf.push_back(std::uint32_t(64 * w + std::size_t(__builtin_ctzll(word))));
   for (std::size_t t = 0; t < nt; ++t)
     if (!degenerate[t] && tet_sets.find(std::uint32_t(t)) == t) ++r.num_tet_components;
   if (duplicates_possible(r)) {
