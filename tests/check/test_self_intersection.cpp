@@ -195,6 +195,12 @@ TEST_CASE("touching at a point counts when no vertex id is shared") {
   REQUIRE(r.first_coincident.size() == 1);
   CHECK(r.first_coincident[0].first == 0);
   CHECK(r.first_coincident[0].second == 3);
+  // −0 and +0 are the same coordinate; three vertices at one point are two coincident pairs.
+  c.xyz[3 * 3 + 1] = -0.0;
+  CHECK(find_self_intersections(c.xyz, c.tris).coincident_vertices == 1);
+  c.v(0, 0, -0.0);
+  c.t(6, 1, 5);
+  CHECK(find_self_intersections(c.xyz, c.tris).coincident_vertices == 2);
 }
 
 TEST_CASE("a shared vertex: touching only there is fine, overlap or piercing is not") {

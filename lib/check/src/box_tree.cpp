@@ -23,6 +23,19 @@ void grow(Box3& box, const Box3& other) {
   }
 }
 
+// Sorts keys (30-bit Morton code << 32 | item) by code, stably: three counting passes of 10 bits
+// (the items arrive in increasing order, so ties stay in item order, as a full sort of the keys).
+void sort_by_code(std::vector<std::uint64_t>& keys) {
+  std::vector<std::uint64_t> scratch(keys.size());
+  for (int shift = 32; shift < 62; shift += 10) {
+    std::uint32_t count[1025] = {};
+    for (const std::uint64_t key : keys) ++count[((key >> shift) & 0x3FFu) + 1];
+    for (int b = 0; b < 1024; ++b) count[b + 1] += count[b];
+    for (const std::uint64_t key : keys) scratch[count[(key >> shift) & 0x3FFu]++] = key;
+    keys.swap(scratch);
+  }
+}
+
 }  // namespace
 
 // Morton order of the box centres, ranges halved top-down, boxes merged bottom-up. Children are
@@ -48,7 +61,7 @@ BoxTree build_box_tree(const std::vector<Box3>& boxes, std::uint32_t leaf_size) 
     }
     keys[i] = (std::uint64_t(code) << 32) | std::uint64_t(i);
   }
-  std::sort(keys.begin(), keys.end());
+  sort_by_code(keys);
   tree.leaf_boxes.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     tree.order[i] = std::uint32_t(keys[i] & 0xFFFFFFFFu);

@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -548,6 +549,59 @@ bool triangle_pair_intersects(const double* xyz, const std::uint32_t* t, const s
 }
 
 // ------------------------------------------------------------------ driver ---------------------
+namespace {
+
+// Whether two of the vertices sit at the same point (==, so −0 and +0 coincide): one pass over an
+// open-addressing table of their positions (the report below sorts, which only a surface with such a
+// pair pays).
+bool any_coincident(const double* xyz, const std::vector<std::uint32_t>& vertices) {
+  std::size_t size = 16;
+  while (size < 2 * vertices.size()) size *= 2;
+  constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> table(size, kEmpty);
+  for (const std::uint32_t v : vertices) {
+    const double* p = xyz + 3 * std::size_t(v);
+    std::uint64_t h = 0x9E3779B97F4A7C15ull;
+    for (int k = 0; k < 3; ++k) {
+      const double c = p[k] + 0.0;  // −0 → +0: equal coordinates hash alike
+      std::uint64_t bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      h = (h ^ bits) * 0xFF51AFD7ED558CCDull;
+      h ^= h >> 32;
+    }
+    for (std::size_t slot = h & (size - 1);; slot = (slot + 1) & (size - 1)) {
+      if (table[slot] == kEmpty) {
+        table[slot] = v;
+        break;
+      }
+      if (points_equal(xyz + 3 * std::size_t(table[slot]), p)) return true;
+    }
+  }
+  return false;
+}
+
+// Coincident vertices, reported in position order: sort the ids by position; equal neighbours
+// coincide.
+void report_coincident(const double* xyz, std::vector<std::uint32_t> vertices, std::size_t cap,
+                       SelfIntersectionResult& result) {
+  std::sort(vertices.begin(), vertices.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const double *p = xyz + 3 * std::size_t(x), *q = xyz + 3 * std::size_t(y);
+    if (p[0] != q[0]) return p[0] < q[0];
+    if (p[1] != q[1]) return p[1] < q[1];
+    if (p[2] != q[2]) return p[2] < q[2];
+    return x < y;
+  });
+  for (std::size_t i = 1; i < vertices.size(); ++i) {
+    const double *p = xyz + 3 * std::size_t(vertices[i - 1]), *q = xyz + 3 * std::size_t(vertices[i]);
+    if (points_equal(p, q)) {
+      ++result.coincident_vertices;
+      if (result.first_coincident.size() < cap) result.first_coincident.emplace_back(vertices[i - 1], vertices[i]);
+    }
+  }
+}
+
+}  // namespace
+
 SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t num_vertices,
                                                const std::uint32_t* tris, std::size_t num_tris,
                                                const SelfIntersectionOptions& options) {
@@ -574,21 +628,7 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
   const std::size_t cap = options.max_reported;
   const bool parallel = options.parallel && num_tris >= 2048;
 
-  // Coincident vertices: sort referenced ids by position; equal neighbours coincide.
-  std::sort(used.begin(), used.end(), [&](std::uint32_t x, std::uint32_t y) {
-    const double *p = xyz + 3 * std::size_t(x), *q = xyz + 3 * std::size_t(y);
-    if (p[0] != q[0]) return p[0] < q[0];
-    if (p[1] != q[1]) return p[1] < q[1];
-    if (p[2] != q[2]) return p[2] < q[2];
-    return x < y;
-  });
-  for (std::size_t i = 1; i < used.size(); ++i) {
-    const double *p = xyz + 3 * std::size_t(used[i - 1]), *q = xyz + 3 * std::size_t(used[i]);
-    if (points_equal(p, q)) {
-      ++result.coincident_vertices;
-      if (result.first_coincident.size() < cap) result.first_coincident.emplace_back(used[i - 1], used[i]);
-    }
-  }
+  if (any_coincident(xyz, used)) report_coincident(xyz, used, cap, result);
 
   // Boxes and degenerate triangles.
   std::vector<Box3> boxes(num_tris);
