@@ -460,8 +460,8 @@ TEST_CASE("closed surfaces with folded fans: the driver finds exactly the brute-
       CHECK(r.intersecting_pairs == expected.pairs);
       CHECK(r.first_pairs == expected.first);
     }
-    MESSAGE((s.tris.size() / 3) << " triangles, " << expected.pairs << " intersecting pairs, " << expected.adjacent_pairs
-                              << " of them adjacent");
+    MESSAGE((s.tris.size() / 3) << " triangles, " << expected.pairs << " intersecting pairs, "
+                                << expected.adjacent_pairs << " of them adjacent");
     CHECK(expected.adjacent_pairs > 0);  // folds inside fans: the per-vertex settling must not hide them
     CHECK(expected.pairs > expected.adjacent_pairs);
   }

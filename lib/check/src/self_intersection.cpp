@@ -273,7 +273,8 @@ std::vector<std::uint8_t> injective_fans(const double* xyz, std::size_t num_vert
       for (std::size_t i = 0; i < m; ++i) {
         const double* p = xyz + 3 * std::size_t(scratch.ring[(i + 1) % m]);
         const double* q = xyz + 3 * std::size_t(scratch.ring[i]);
-        const double u[3] = {p[0] - pa[0], p[1] - pa[1], p[2] - pa[2]}, w[3] = {q[0] - pa[0], q[1] - pa[1], q[2] - pa[2]};
+        const double u[3] = {p[0] - pa[0], p[1] - pa[1], p[2] - pa[2]};
+        const double w[3] = {q[0] - pa[0], q[1] - pa[1], q[2] - pa[2]};
         normal[0] += u[1] * w[2] - u[2] * w[1];
         normal[1] += u[2] * w[0] - u[0] * w[2];
         normal[2] += u[0] * w[1] - u[1] * w[0];
@@ -400,7 +401,10 @@ static_assert(kLeafSize % 4 == 0 && kLeafSize <= 32, "leaf_hits tests a leaf in 
 // The leaf boxes by position again, as floats rounded outwards (lo down, hi up), one array per bound,
 // padded by a leaf of empty boxes: a box is tested against a whole leaf at once (leaf_hits). Float
 // boxes contain the double ones, so they only pre-select; each hit is confirmed by the exact double
-// test, and the pairs found are exactly the double boxes' overlapping pairs.
+// test, and the pairs found are exactly the double boxes' overlapping pairs. This holds in any
+// floating-point mode: the conversion is monotone whatever the rounding or flushing, and each bound
+// is moved outwards from the converted value: a lower bound ≤ an upper bound in doubles stays so in
+// floats.
 struct FloatLeafBoxes {
   std::vector<float> bound[6];  // lo x, lo y, lo z, hi x, hi y, hi z
   explicit FloatLeafBoxes(const std::vector<Box3>& boxes) {
@@ -432,7 +436,8 @@ inline std::uint32_t leaf_hits(const FloatLeafBoxes& f, std::uint32_t i, std::ui
   for (std::uint32_t group = 0; group < kLeafSize; group += 4) {
     __m128 inside = _mm_castsi128_ps(_mm_set1_epi32(-1));
     for (int k = 0; k < 3; ++k) {
-      const __m128 lo = _mm_loadu_ps(f.bound[k].data() + first + group), hi = _mm_loadu_ps(f.bound[k + 3].data() + first + group);
+      const __m128 lo = _mm_loadu_ps(f.bound[k].data() + first + group);
+      const __m128 hi = _mm_loadu_ps(f.bound[k + 3].data() + first + group);
       inside = _mm_and_ps(inside, _mm_and_ps(_mm_cmple_ps(own_lo[k], hi), _mm_cmple_ps(lo, own_hi[k])));
     }
     hits |= std::uint32_t(_mm_movemask_ps(inside)) << group;
