@@ -104,7 +104,8 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
     } else {  // large buckets (high-valence vertices): sort a permutation
       perm.resize(n);
       std::iota(perm.begin(), perm.end(), 0u);
-      std::sort(perm.begin(), perm.end(), [&](std::uint32_t x, std::uint32_t y) { return k[x] < k[y] || (k[x] == k[y] && x < y); });
+      std::sort(perm.begin(), perm.end(),
+                [&](std::uint32_t x, std::uint32_t y) { return k[x] < k[y] || (k[x] == k[y] && x < y); });
       tmp_keys.assign(k, k + n);
       tmp_hfp.assign(h, h + n);
       for (std::size_t a = 0; a < n; ++a) {
