@@ -293,12 +293,32 @@ std::vector<std::uint8_t> injective_fans(const double* xyz, std::size_t num_vert
   return injective;
 }
 
-// Triangles t and u share a vertex whose fan is injective: they meet only where they are adjacent.
-inline bool settled_by_fan(const std::uint32_t* t, const std::uint32_t* u, const std::vector<std::uint8_t>& injective) {
-  for (int i = 0; i < 3; ++i)
-    if (injective[t[i]] && (t[i] == u[0] || t[i] == u[1] || t[i] == u[2])) return true;
-  return false;
-}
+// The triangles in the tree's position order (the order its leaves are scanned in), each with the
+// bits of its corners whose fan is injective: the pair visits read them contiguously.
+struct PositionedTriangles {
+  std::vector<std::array<std::uint32_t, 3>> corners;
+  std::vector<std::uint8_t> injective_corners;  // bit k: corner k's fan is injective
+  PositionedTriangles(const std::uint32_t* tris, const std::vector<std::uint32_t>& order,
+                      const std::vector<std::uint8_t>& injective_fan)
+      : corners(order.size()), injective_corners(order.size(), 0) {
+    for (std::size_t pos = 0; pos < order.size(); ++pos) {
+      const std::uint32_t* t = tris + 3 * std::size_t(order[pos]);
+      for (int k = 0; k < 3; ++k) {
+        corners[pos][k] = t[k];
+        injective_corners[pos] |= std::uint8_t(injective_fan[t[k]] << k);
+      }
+    }
+  }
+  // The triangles at positions i and j share a vertex whose fan is injective: they meet only where
+  // they are adjacent.
+  bool settled_by_fan(std::uint32_t i, std::uint32_t j) const {
+    const std::array<std::uint32_t, 3>& t = corners[i];
+    const std::array<std::uint32_t, 3>& u = corners[j];
+    for (int k = 0; k < 3; ++k)
+      if (((injective_corners[i] >> k) & 1) && (t[k] == u[0] || t[k] == u[1] || t[k] == u[2])) return true;
+    return false;
+  }
+};
 
 // Per-block findings, merged in block order so the reported lists are deterministic.
 struct BlockResult {
@@ -404,13 +424,14 @@ static_assert(kLeafSize % 4 == 0 && kLeafSize <= 32, "leaf_hits tests a leaf in 
 // test, and the pairs found are exactly the double boxes' overlapping pairs. This holds in any
 // floating-point mode: the conversion is monotone whatever the rounding or flushing, and each bound
 // is moved outwards from the converted value: a lower bound ≤ an upper bound in doubles stays so in
-// floats.
+// floats. Items marked `skip` (degenerate triangles, which pair with nothing) get empty boxes and are
+// never visited.
 struct FloatLeafBoxes {
   std::vector<float> bound[6];  // lo x, lo y, lo z, hi x, hi y, hi z
-  explicit FloatLeafBoxes(const std::vector<Box3>& boxes) {
+  FloatLeafBoxes(const std::vector<Box3>& boxes, const std::vector<std::uint8_t>& skip) {
     for (int k = 0; k < 6; ++k) bound[k].assign(boxes.size() + kLeafSize, k < 3 ? kInf : -kInf);
     for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 3 && !skip[i]; ++k) {
         bound[k][i] = round_down(boxes[i].lo[k]);
         bound[k + 3][i] = round_up(boxes[i].hi[k]);
       }
@@ -453,7 +474,8 @@ inline std::uint32_t leaf_hits(const FloatLeafBoxes& f, std::uint32_t i, std::ui
   return hits;
 }
 
-// Calls visit(item, item) for every pair of distinct items under the task whose leaf boxes overlap.
+// Calls visit(position, position) for every pair of distinct items under the task whose leaf boxes
+// overlap (items with empty float boxes never).
 template <class Visit>
 void run_traversal(const BoxTree& tree, const FloatLeafBoxes& float_boxes, const NodeTask& root, Visit&& visit) {
   NodeTask stack[192];  // each split adds at most 2 net entries per tree level, of depth below 32
@@ -474,7 +496,7 @@ void run_traversal(const BoxTree& tree, const FloatLeafBoxes& float_boxes, const
       while (hits != 0) {
         const std::uint32_t j = b.begin + std::uint32_t(__builtin_ctz(hits));
         hits &= hits - 1;
-        if (boxes_overlap(tree.leaf_boxes[i], tree.leaf_boxes[j])) visit(tree.order[i], tree.order[j]);
+        if (boxes_overlap(tree.leaf_boxes[i], tree.leaf_boxes[j])) visit(i, j);
       }
     }
   }
@@ -664,18 +686,21 @@ SelfIntersectionResult find_self_intersections(const double* xyz, std::size_t nu
 
   const std::vector<std::uint8_t> injective_fan = injective_fans(xyz, num_vertices, tris, num_tris, parallel);
   const BoxTree bvh = build_box_tree(boxes, kLeafSize);
-  const FloatLeafBoxes float_boxes(bvh.leaf_boxes);
+  std::vector<std::uint8_t> degenerate_at(num_tris);  // by position
+  for (std::size_t pos = 0; pos < num_tris; ++pos) degenerate_at[pos] = degenerate[bvh.order[pos]];
+  const FloatLeafBoxes float_boxes(bvh.leaf_boxes, degenerate_at);
+  const PositionedTriangles positioned(tris, bvh.order, injective_fan);
   const std::vector<NodeTask> tasks = split_traversal(bvh, parallel ? kParallelTasks : 1);
   std::vector<BlockResult> blocks(tasks.size());
   auto run_task = [&](std::size_t k) {
     const FpEnvironmentScope fp;  // one MXCSR check per task (per thread)
     BlockResult& out = blocks[k];
-    auto visit_pair = [&](std::uint32_t t, std::uint32_t u) {
-      if (degenerate[t] || degenerate[u]) return;
+    auto visit_pair = [&](std::uint32_t i, std::uint32_t j) {  // positions; degenerate ones never come
       ++out.candidates;
+      if (positioned.settled_by_fan(i, j)) return;
+      const std::uint32_t t = bvh.order[i], u = bvh.order[j];
       const std::uint32_t lo = std::min(t, u), hi = std::max(t, u);
-      const std::uint32_t *tl = tris + 3 * std::size_t(lo), *th = tris + 3 * std::size_t(hi);
-      if (settled_by_fan(tl, th, injective_fan) || !triangle_pair_intersects_in(fp, xyz, tl, th)) return;
+      if (!triangle_pair_intersects_in(fp, xyz, tris + 3 * std::size_t(lo), tris + 3 * std::size_t(hi))) return;
       ++out.pairs;
       if (cap > 0) {
         out.smallest.push_back(TrianglePair{lo, hi});
