@@ -217,13 +217,14 @@ bool fan_cycle(const std::uint32_t* tris, std::uint32_t a, const std::uint32_t* 
   std::size_t i = 0;
   for (std::size_t step = 0; step < m; ++step) {
     scratch.ring.push_back(scratch.prev[i]);  // triangle i is (a, next_i, prev_i): the ring runs prev -> next
-    std::size_t follower = m;
-    for (std::size_t j = 0; j < m; ++j)
-      if (scratch.prev[j] == scratch.next[i]) {
-        if (follower != m) return false;  // two triangles continue the ring: not one cycle
-        follower = j;
-      }
-    if (follower == m || (follower == 0) != (step + 1 == m)) return false;
+    std::size_t follower = m, followers = 0;  // branch-free: the fan is small, the matches unpredictable
+    for (std::size_t j = 0; j < m; ++j) {
+      const bool match = scratch.prev[j] == scratch.next[i];
+      followers += match;
+      follower = match ? j : follower;
+    }
+    if (followers != 1) return false;  // none, or two triangles continue the ring: not one cycle
+    if ((follower == 0) != (step + 1 == m)) return false;
     i = follower;
   }
   return true;
