@@ -167,10 +167,13 @@ TEST_CASE("empty input") {
 
 TEST_CASE("random tet soups: analyze_topology agrees with a std::map oracle") {
   std::mt19937 rng(7);
-  for (int round = 0; round < 300; ++round) {
+  for (int round = 0; round < 400; ++round) {
     TetMeshData d;
-    const std::uint32_t nv = 4 + rng() % 10;
-    const std::size_t nt = 1 + rng() % 12;
+    // Odd rounds: few vertices under many tets, so the face grouping's buckets exceed its
+    // insertion-sort size (48 faces) and take the large-bucket sort, with many repeated faces.
+    const bool crowded = round % 2 == 1;
+    const std::uint32_t nv = crowded ? 5 + rng() % 5 : 4 + rng() % 10;
+    const std::size_t nt = crowded ? 20 + rng() % 60 : 1 + rng() % 12;
     d.xyz.assign(3 * nv, 0.0);
     for (std::size_t t = 0; t < nt; ++t)
       for (int i = 0; i < 4; ++i) d.tets.push_back(rng() % nv);

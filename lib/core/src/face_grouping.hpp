@@ -22,6 +22,10 @@
 namespace volmap::detail {
 
 inline constexpr std::size_t kMaxGroupedTets = std::size_t(1) << 29;
+// A large bucket sorts its entries packed as (mid, max, position) in one 64-bit word when the ids
+// fit 21 bits and the positions 22.
+inline constexpr std::size_t kPackedIdLimit = std::size_t(1) << 21;
+inline constexpr std::size_t kPackedPositionLimit = std::size_t(1) << 22;
 inline constexpr std::uint32_t kParityBit = 0x80000000u;
 
 inline std::uint32_t hf_of(std::uint32_t hf_parity) { return hf_parity & ~kParityBit; }
@@ -78,6 +82,7 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
   }
   auto process = [&](std::size_t first_vertex, std::size_t last_vertex) {
   std::vector<std::uint32_t> perm;
+  std::vector<std::uint64_t> packed;
   std::vector<std::uint64_t> tmp_keys;
   std::vector<std::uint32_t> tmp_hfp;
   for (std::size_t v = first_vertex; v < last_vertex; ++v) {
@@ -101,11 +106,21 @@ void group_faces(const std::uint32_t* tets, std::size_t num_tets, std::size_t nu
         k[b] = kk;
         h[b] = hh;
       }
-    } else {  // large buckets (high-valence vertices): sort a permutation
-      perm.resize(n);
-      std::iota(perm.begin(), perm.end(), 0u);
-      std::sort(perm.begin(), perm.end(),
-                [&](std::uint32_t x, std::uint32_t y) { return k[x] < k[y] || (k[x] == k[y] && x < y); });
+    } else {  // large buckets (high-valence vertices): sort (key, position) and gather
+      if (num_vertices <= kPackedIdLimit && n <= kPackedPositionLimit) {
+        // (mid, max, position) packed in one word (21 + 21 + 22 bits): a plain integer sort.
+        packed.resize(n);
+        for (std::size_t a = 0; a < n; ++a)
+          packed[a] = ((k[a] >> 32) << 43) | ((k[a] & 0xFFFFFFFFu) << 22) | std::uint64_t(a);
+        std::sort(packed.begin(), packed.end());
+        perm.resize(n);
+        for (std::size_t a = 0; a < n; ++a) perm[a] = std::uint32_t(packed[a] & (kPackedPositionLimit - 1));
+      } else {
+        perm.resize(n);
+        std::iota(perm.begin(), perm.end(), 0u);
+        std::sort(perm.begin(), perm.end(),
+                  [&](std::uint32_t x, std::uint32_t y) { return k[x] < k[y] || (k[x] == k[y] && x < y); });
+      }
       tmp_keys.assign(k, k + n);
       tmp_hfp.assign(h, h + n);
       for (std::size_t a = 0; a < n; ++a) {
