@@ -250,9 +250,9 @@ inline void scaled_energies(const Invariants& v, double k, const ClosedFormBound
   s.i2 = v.i2 * k2 * k2;
   s.det = v.det * k2 * k;
   double raw[kEnergies];
-  const bool have_cbrt = !std::isnan(parts.inverse_cbrt_d2);
-  scale_free_energies(s, have_cbrt ? parts.inverse_cbrt_d2 : inverse_cube_root(s.det * s.det), raw);
-  if (have_cbrt) raw[0] = v.i1 * parts.inverse_cbrt_d2 * (1.0 / 3.0);  // scale-free: J's own value
+  // |k³d|^{−2/3} = |d|^{−2/3}/k².
+  scale_free_energies(
+      s, std::isnan(parts.inverse_cbrt_d2) ? inverse_cube_root(s.det * s.det) : parts.inverse_cbrt_d2 / k2, raw);
   raw[1] = s.i1;
   if (s.i1 >= bounds.arap_clamp_i1)
     raw[3] = upper;  // ARAP ≥ (‖s‖ − √3)² ≥ upper (see ClosedFormBounds)

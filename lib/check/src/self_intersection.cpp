@@ -22,6 +22,7 @@
 #include <volmap/check/box_tree.hpp>
 
 #include <volmap/core/error.hpp>
+#include <volmap/core/topology.hpp>
 #include <volmap/predicates.hpp>
 
 #include <tbb/blocked_range.h>
@@ -183,55 +184,17 @@ bool shared_vertex_pair(const FpEnvironmentScope& fp, const double* a, const dou
 }
 
 // ---------------------------------------------------------------- injective vertex fans -------
-// The fan of vertex a: its triangles (a, b_{i+1}, b_i) (each as wound in the soup, seen from its
-// corner a) chained into one closed cycle b_0 -> b_1 -> ... -> b_0. Projected along axis k, the fan is injective when every
-// projected triangle has the same strict orientation s and the wedges at A wind once around A. Then
-// two of its triangles meet only in their shared edge a-b_i or in a: their projections meet only
-// there, and the projection is injective on each triangle. The winding number is the number of
-// half-open wedges [B_i, B_{i+1}) that contain the direction of B_0 (each wedge is below a half
-// turn, so the opposite direction is in none of them): exactly one, wedge 0, when it winds once.
-struct FanScratch {
-  std::vector<std::uint32_t> next, prev;  // per triangle of the fan, as seen from a
-  std::vector<std::uint32_t> ring;        // b_0, b_1, ... in cycle order
-};
+// The fan of vertex a: its triangles chained into one closed cycle (VertexFan, topology.hpp), ring
+// b_0 -> b_1 -> ... -> b_0, triangle i being (a, b_{i+1}, b_i). Projected along axis k, the fan is
+// injective when every projected triangle has the same strict orientation s and the wedges at A wind
+// once around A. Then two of its triangles meet only in their shared edge a-b_i or in a: their
+// projections meet only there, and the projection is injective on each triangle. The winding number
+// is the number of half-open wedges [B_i, B_{i+1}) that contain the direction of B_0 (each wedge is
+// below a half turn, so the opposite direction is in none of them): exactly one, wedge 0, when it
+// winds once.
 
-// The ring of a's triangles in cycle order into scratch.ring, or false when they do not form one
-// closed cycle (a border, a pinch, a repeated or degenerate triangle). The walk follows each
-// triangle to the one whose prev is its next; every triangle must have exactly one such follower,
-// and the walk must first return to where it started after all m triangles. Then the followers are
-// a single cyclic permutation, so the ring vertices (the prevs) are distinct: two equal prevs would
-// both follow one triangle.
-bool fan_cycle(const std::uint32_t* tris, std::uint32_t a, const std::uint32_t* incident, std::size_t m,
-               FanScratch& scratch) {
-  if (m < 3) return false;
-  scratch.next.resize(m);
-  scratch.prev.resize(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    const std::uint32_t* t = tris + 3 * std::size_t(incident[i]);
-    const int at = t[0] == a ? 0 : t[1] == a ? 1 : 2;
-    scratch.next[i] = t[(at + 1) % 3];
-    scratch.prev[i] = t[(at + 2) % 3];
-    if (scratch.next[i] == a || scratch.prev[i] == a || scratch.next[i] == scratch.prev[i]) return false;
-  }
-  scratch.ring.clear();
-  std::size_t i = 0;
-  for (std::size_t step = 0; step < m; ++step) {
-    scratch.ring.push_back(scratch.prev[i]);  // triangle i is (a, next_i, prev_i): the ring runs prev -> next
-    std::size_t follower = m, followers = 0;  // branch-free: the fan is small, the matches unpredictable
-    for (std::size_t j = 0; j < m; ++j) {
-      const bool match = scratch.prev[j] == scratch.next[i];
-      followers += match;
-      follower = match ? j : follower;
-    }
-    if (followers != 1) return false;  // none, or two triangles continue the ring: not one cycle
-    if ((follower == 0) != (step + 1 == m)) return false;
-    i = follower;
-  }
-  return true;
-}
-
-// The fan's ring (b_0 .. b_{m−1}, triangles (a, b_{i+1}, b_i) in the soup's winding) projected along
-// axis k is injective (see above).
+// The fan's ring (b_0 .. b_{m−1}, triangles (a, b_{i+1}, b_i)) projected along axis k is injective
+// (see above).
 bool fan_injective_in(const FpEnvironmentScope& fp, const double* xyz, std::uint32_t a,
                       const std::vector<std::uint32_t>& ring, int k) {
   auto P = [&](std::uint32_t v) { return project(xyz + 3 * std::size_t(v), k); };
@@ -264,16 +227,17 @@ std::vector<std::uint8_t> injective_fans(const double* xyz, std::size_t num_vert
   std::vector<std::uint8_t> injective(num_vertices, 0);
   auto judge = [&](std::size_t begin, std::size_t end) {
     const FpEnvironmentScope fp;
-    FanScratch scratch;
+    VertexFan fan;
     for (std::size_t v = begin; v < end; ++v) {
       const std::uint32_t a = std::uint32_t(v);
-      if (!fan_cycle(tris, a, incident.data() + offsets[v], offsets[v + 1] - offsets[v], scratch)) continue;
+      if (!fan.close(tris, a, incident.data() + offsets[v], offsets[v + 1] - offsets[v])) continue;
+      const std::vector<std::uint32_t>& ring = fan.ring();
       const double* pa = xyz + 3 * v;
       double normal[3] = {0, 0, 0};  // Σ (b_{i+1} − a) × (b_i − a): the fan's winding
-      const std::size_t m = scratch.ring.size();
+      const std::size_t m = ring.size();
       for (std::size_t i = 0; i < m; ++i) {
-        const double* p = xyz + 3 * std::size_t(scratch.ring[(i + 1) % m]);
-        const double* q = xyz + 3 * std::size_t(scratch.ring[i]);
+        const double* p = xyz + 3 * std::size_t(ring[(i + 1) % m]);
+        const double* q = xyz + 3 * std::size_t(ring[i]);
         const double u[3] = {p[0] - pa[0], p[1] - pa[1], p[2] - pa[2]};
         const double w[3] = {q[0] - pa[0], q[1] - pa[1], q[2] - pa[2]};
         normal[0] += u[1] * w[2] - u[2] * w[1];
@@ -283,7 +247,7 @@ std::vector<std::uint8_t> injective_fans(const double* xyz, std::size_t num_vert
       // Dropping coordinate 2 is projection k 0, dropping 0 is k 1, dropping 1 is k 2 (kAxes).
       const double weight[3] = {std::fabs(normal[2]), std::fabs(normal[0]), std::fabs(normal[1])};
       const int k = weight[0] >= weight[1] ? (weight[0] >= weight[2] ? 0 : 2) : (weight[1] >= weight[2] ? 1 : 2);
-      injective[v] = fan_injective_in(fp, xyz, a, scratch.ring, k) ? 1 : 0;
+      injective[v] = fan_injective_in(fp, xyz, a, ring, k) ? 1 : 0;
     }
   };
   if (parallel)

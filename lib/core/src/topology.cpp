@@ -1,9 +1,10 @@
 // analyze_topology: face grouping by counting sort (face_grouping.hpp), union-find for tet components,
 // duplicate tets only where they can exist (duplicates_possible); its boundary triangles go through
 // analyze_surface_topology (union-find components with per-component chi; per vertex, over a CSR of
-// incident triangles, the closed-manifold test of closed_manifold_links, and where it fails the
-// general link analysis: link union-find, and the edges to higher ids with their multiplicity and
-// direction), which the surface checks (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
+// incident triangles, the closed-fan test of closed_manifold_links (VertexFan, which the
+// self-intersection test uses too), and where it fails the general link analysis: link union-find,
+// and the edges to higher ids with their multiplicity and direction), which the surface checks
+// (tetmesh_checks.cpp) use as well. Conventions in topology.hpp.
 #include <volmap/core/topology.hpp>
 
 #include <volmap/core/error.hpp>
@@ -130,41 +131,21 @@ void general_links(std::size_t num_vertices, const std::vector<std::uint32_t>& t
   }
 }
 
-// The common case, decided per vertex without sorting: every vertex v's incident triangles
-// (v, next, prev) have distinct `next`s and, stepping from a triangle to the one whose next is its
-// prev, form one cycle through all of them. Then every edge (v, w) lies on exactly two triangles that
-// traverse it in opposite directions, and every link is one cycle: a closed, consistently oriented
-// 2-manifold. Counts the edges (at their lower endpoint) into st and comp_chi and returns true; at
-// the first vertex where this fails, returns false with st and comp_chi untouched.
+// The common case, decided per vertex without sorting: every vertex's incident triangles form one
+// closed fan (VertexFan). Then every edge (v, w) lies on exactly two triangles that traverse it in
+// opposite directions, and every link is one cycle: a closed, consistently oriented 2-manifold.
+// Counts the edges (at their lower endpoint) into st and comp_chi and returns true; at the first
+// vertex where this fails, returns false with st and comp_chi untouched.
 bool closed_manifold_links(std::size_t num_vertices, const std::vector<std::uint32_t>& tris,
                            const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& incident,
                            UnionFind& sets, std::vector<long long>& comp_chi, SurfaceTopology& st) {
-  std::vector<std::uint32_t> next, prev;
+  VertexFan fan;
   std::vector<std::uint32_t> edges_at(num_vertices, 0);  // edges (v, w), w > v
   for (std::size_t v = 0; v < num_vertices; ++v) {
     const std::uint32_t begin = offsets[v], end = offsets[v + 1];
-    const std::uint32_t m = end - begin;
-    if (m == 0) continue;
-    next.resize(m);
-    prev.resize(m);
-    for (std::uint32_t i = 0; i < m; ++i) {
-      const Corner c = corner_at(&tris[3 * incident[begin + i]], std::uint32_t(v));
-      next[i] = c.next;
-      prev[i] = c.prev;
-    }
-    for (std::uint32_t i = 0; i < m; ++i)
-      for (std::uint32_t j = i + 1; j < m; ++j)
-        if (next[i] == next[j]) return false;
-    std::uint32_t i = 0, steps = 0;
-    do {
-      std::uint32_t j = 0;
-      while (j < m && next[j] != prev[i]) ++j;
-      if (j == m) return false;
-      i = j;
-      ++steps;
-    } while (i != 0 && steps <= m);
-    if (steps != m) return false;
-    for (std::uint32_t k = 0; k < m; ++k) edges_at[v] += next[k] > v ? 1u : 0u;
+    if (begin == end) continue;
+    if (!fan.close(tris.data(), std::uint32_t(v), incident.data() + begin, end - begin)) return false;
+    for (const std::uint32_t w : fan.ring()) edges_at[v] += w > v ? 1u : 0u;
   }
   for (std::size_t v = 0; v < num_vertices; ++v) {
     if (edges_at[v] == 0) continue;
@@ -290,6 +271,35 @@ TopologyReport analyze_topology(const TetMeshData& data) {
   r.no_degenerate_tets = r.num_degenerate_tets == 0;
   r.no_unused_vertices = r.num_unused_vertices == 0;
   return r;
+}
+
+// Each triangle is followed by the one whose prev is its next; the count of such triangles must be
+// exactly one (counted without branches: fans are small and the matches unpredictable), and the walk
+// must first return to its start after all m triangles. Then the followers form one cyclic
+// permutation, so the prevs (the ring) are distinct: two equal prevs would both follow one triangle.
+bool VertexFan::close(const std::uint32_t* tris, std::uint32_t v, const std::uint32_t* incident, std::size_t m) {
+  next_.resize(m);
+  prev_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const Corner c = corner_at(tris + 3 * std::size_t(incident[i]), v);
+    if (c.next == v || c.prev == v || c.next == c.prev) return false;
+    next_[i] = c.next;
+    prev_[i] = c.prev;
+  }
+  ring_.clear();
+  std::size_t i = 0;
+  for (std::size_t step = 0; step < m; ++step) {
+    ring_.push_back(prev_[i]);
+    std::size_t follower = m, followers = 0;
+    for (std::size_t j = 0; j < m; ++j) {
+      const bool match = prev_[j] == next_[i];
+      followers += match;
+      follower = match ? j : follower;
+    }
+    if (followers != 1 || (follower == 0) != (step + 1 == m)) return false;
+    i = follower;
+  }
+  return m > 0;
 }
 
 SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris) {

@@ -101,4 +101,20 @@ struct SurfaceTopology {
 // Throws Error(BadInput) for ids out of range or a size that is not a multiple of 3.
 SurfaceTopology analyze_surface_topology(std::size_t num_vertices, const std::vector<std::uint32_t>& tris);
 
+// The triangles around one vertex v as a closed fan; one object serves vertex after vertex (its
+// scratch is reused). Each triangle containing v is (v, next, prev) as seen from its corner v.
+class VertexFan {
+ public:
+  // True when the m triangles tris[3·incident[i] ..] (i < m, each holding v) chain into one cycle:
+  // every triangle's next is the prev of exactly one triangle, and stepping so goes once round all
+  // m of them. A triangle repeating an id is never part of a closed fan. Then ring() lists the link
+  // vertices in that order: triangle k of the cycle is (v, ring[k+1], ring[k]), indices mod m, and
+  // every edge (v, w) lies on exactly two of the triangles, traversed in opposite directions.
+  bool close(const std::uint32_t* tris, std::uint32_t v, const std::uint32_t* incident, std::size_t m);
+  const std::vector<std::uint32_t>& ring() const { return ring_; }
+
+ private:
+  std::vector<std::uint32_t> next_, prev_, ring_;
+};
+
 }  // namespace volmap
