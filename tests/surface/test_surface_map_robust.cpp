@@ -112,8 +112,11 @@ TEST_CASE("a worm lying in one chart maps onto every domain and the sphere") {
     SurfaceMapResult r;
     REQUIRE_NOTHROW(r = map_surface_to_domain(worm, d));
     require_valid(worm, r, d);
-    // Only chord splits (the reference's rule): no other arc order, no subdivision round.
-    CHECK(r.attempt == "reference arc order");
+    // Only chord splits (the reference's rule): no other arc order, no subdivision round (the
+    // probes may be rotated, surface_map.hpp step 6).
+    CHECK(r.attempt.rfind("reference arc order", 0) == 0);
+    CHECK(r.attempt.find("subdivision") == std::string::npos);
+    CHECK(r.attempt.find("spanning tree") == std::string::npos);
     if (std::string(name) == "cube") require_valid_sphere(project_to_sphere(r, {50, 50, 50}, 50));
   }
 }

@@ -72,6 +72,12 @@ struct Domain {
   std::vector<int> trace_order() const;
 };
 
+// The domain with its node probes turned by one of the 24 rotations of the bounding box about its
+// centre (0 = unchanged): the nodes then land on other extremities of the input, in the same cyclic
+// arrangement (a proper rotation keeps the orientation). The targets, arcs and faces are unchanged.
+inline constexpr int kNumProbeRotations = 24;
+Domain with_rotated_probes(const Domain& domain, int rotation);
+
 // "cube", "tet", "pyr", "octa", "star" (also the reference's upper-case names CUBE, TETRAHEDRON,
 // PYRAMID, OCTAHEDRON, STAR). Throws Error(BadInput) for anything else.
 Domain builtin_domain(const std::string& name);

@@ -1,0 +1,73 @@
+// probe_rotation.cpp — the 24 rotations of a domain's node probes (domain.hpp). Conventions: the
+// probes live in the input's bounding box normalised to [0,1]³; a rotation R of the cube about its
+// centre moves probe fraction f to 0.5 + R(f − 0.5), and a bbox corner (reference numbering) to the
+// corner there. Rotation 0 is the identity; the others are the proper signed permutation matrices in
+// a fixed order (permutation of the axes, then signs), so that an index names the same rotation on
+// every run.
+#include <volmap/surface/domain.hpp>
+#include <volmap/core/error.hpp>
+
+#include <array>
+#include <cmath>
+
+namespace volmap {
+namespace {
+
+using Matrix = std::array<std::array<int, 3>, 3>;
+
+// The 24 proper rotations of the cube, identity first.
+std::array<Matrix, kNumProbeRotations> cube_rotations() {
+  std::array<Matrix, kNumProbeRotations> out{};
+  const int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  std::size_t n = 0;
+  for (const auto& p : perms)
+    for (int signs = 0; signs < 8; ++signs) {
+      Matrix m{};
+      for (int r = 0; r < 3; ++r) m[r][p[r]] = (signs >> r & 1) ? -1 : 1;
+      const int det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                      m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+      if (det == 1) out[n++] = m;
+    }
+  return out;
+}
+
+// Reference bbox corner numbering (domain.cpp): corner c selects min (0) or max (1) per axis.
+constexpr int kCornerBits[8][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}};
+
+int rotated_corner(const Matrix& m, int c) {
+  int bits[3];
+  for (int r = 0; r < 3; ++r) {
+    int x = 0;  // R(2·bit − 1) in {−1, 1}
+    for (int k = 0; k < 3; ++k) x += m[r][k] * (2 * kCornerBits[c][k] - 1);
+    bits[r] = x > 0 ? 1 : 0;
+  }
+  for (int k = 0; k < 8; ++k)
+    if (kCornerBits[k][0] == bits[0] && kCornerBits[k][1] == bits[1] && kCornerBits[k][2] == bits[2]) return k;
+  return c;  // unreachable: every sign pattern is a corner
+}
+
+}  // namespace
+
+Domain with_rotated_probes(const Domain& domain, int rotation) {
+  if (rotation < 0 || rotation >= kNumProbeRotations)
+    throw Error(ErrorKind::BadInput, "", 0, "probe rotation out of range: " + std::to_string(rotation));
+  if (rotation == 0) return domain;
+  static const std::array<Matrix, kNumProbeRotations> rotations = cube_rotations();
+  const Matrix& m = rotations[std::size_t(rotation)];
+  Domain d = domain;
+  for (std::size_t node = 0; node < d.num_nodes(); ++node) {
+    for (int& c : d.probe_corners[node]) c = rotated_corner(m, c);
+    std::array<double, 3>& f = d.probe_fraction[node];
+    if (std::isnan(f[0])) continue;
+    std::array<double, 3> g{};
+    for (int r = 0; r < 3; ++r) {
+      double x = 0;
+      for (int k = 0; k < 3; ++k) x += m[r][k] * (f[std::size_t(k)] - 0.5);
+      g[std::size_t(r)] = 0.5 + x;
+    }
+    f = g;
+  }
+  return d;
+}
+
+}  // namespace volmap

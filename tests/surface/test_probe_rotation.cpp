@@ -1,0 +1,108 @@
+// Node probe rotations (domain.hpp with_rotated_probes) and the surface map's search over them
+// (surface_map.hpp step 6): the 24 rotations are distinct proper rotations of the probes, and a
+// coarse mesh whose unrotated map needs many splits gets the fewest-tet map of the 24, recomputed
+// here one rotation at a time, which passes the exact check.
+#include <doctest/doctest.h>
+#include <volmap/io/io.hpp>
+#include <volmap/surface/domain.hpp>
+#include <volmap/surface/surface_map.hpp>
+#include <volmap/surface/surface_map_check.hpp>
+
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace volmap;
+
+// det[p1 − p0, p2 − p0, p3 − p0] of four nodes' probes in the unit box.
+static double probe_volume(const Domain& d, int n0, int n1, int n2, int n3) {
+  const Point3 m{0, 0, 0}, M{1, 1, 1};
+  const Point3 p0 = d.probe(n0, m, M), p1 = d.probe(n1, m, M), p2 = d.probe(n2, m, M), p3 = d.probe(n3, m, M);
+  double a[3], b[3], c[3];
+  for (int k = 0; k < 3; ++k) a[k] = p1[k] - p0[k], b[k] = p2[k] - p0[k], c[k] = p3[k] - p0[k];
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+TEST_CASE("the 24 probe rotations are distinct, proper and keep the probes in the box") {
+  for (const char* name : {"cube", "tet", "pyr", "octa", "star"}) {
+    CAPTURE(name);
+    const Domain d = builtin_domain(name);
+    // Four probed nodes spanning a volume (every built-in has them among its first five nodes).
+    int quad[4] = {-1, -1, -1, -1};
+    const Point3 m{0, 0, 0}, M{1, 1, 1};
+    for (int a = 0; a < 5 && quad[0] < 0; ++a)
+      for (int b = a + 1; b < 5 && quad[0] < 0; ++b)
+        for (int c = b + 1; c < 5 && quad[0] < 0; ++c)
+          for (int e = c + 1; e < 6 && quad[0] < 0; ++e)
+            if (d.has_probe(a) && d.has_probe(b) && d.has_probe(c) && d.has_probe(e) && probe_volume(d, a, b, c, e) != 0)
+              quad[0] = a, quad[1] = b, quad[2] = c, quad[3] = e;
+    REQUIRE(quad[0] >= 0);
+    const double volume = probe_volume(d, quad[0], quad[1], quad[2], quad[3]);
+    std::set<std::vector<double>> placements;
+    for (int r = 0; r < kNumProbeRotations; ++r) {
+      CAPTURE(r);
+      const Domain rd = with_rotated_probes(d, r);
+      // A rotation keeps volumes, sign included (a reflection would mirror the node arrangement).
+      CHECK(probe_volume(rd, quad[0], quad[1], quad[2], quad[3]) == doctest::Approx(volume));
+      std::vector<double> all;
+      for (std::size_t n = 0; n < d.num_nodes(); ++n) {
+        CHECK(rd.has_probe(int(n)) == d.has_probe(int(n)));
+        if (!d.has_probe(int(n))) continue;
+        const Point3 p = rd.probe(int(n), m, M);
+        for (int k = 0; k < 3; ++k) {
+          CHECK(p[k] >= -1e-12);
+          CHECK(p[k] <= 1 + 1e-12);
+          all.push_back(p[k]);
+        }
+      }
+      if (r == 0)
+        for (std::size_t n = 0; n < d.num_nodes(); ++n)
+          if (d.has_probe(int(n))) CHECK(rd.probe(int(n), m, M) == d.probe(int(n), m, M));
+      placements.insert(all);
+      CHECK(rd.targets == d.targets);
+    }
+    // The tet's and pyramid's probes have symmetries of their own; the cube's, octahedron's and
+    // star's corner and face probes give 24 different placements.
+    if (std::string(name) == "cube" || std::string(name) == "octa" || std::string(name) == "star")
+      CHECK(placements.size() == std::size_t(kNumProbeRotations));
+  }
+  CHECK_THROWS(with_rotated_probes(builtin_domain("cube"), kNumProbeRotations));
+}
+
+TEST_CASE("a coarse octopus onto the star and the octahedron: the map of the 24 placements with the fewest tets") {
+  VOLMAP_REQUIRE_DATA(path, "tetmeshes/libigl_tutorial/octopus-low.mesh");
+  TetMeshData mesh = read_tet_mesh(path.string());
+  // libigl's tutorial meshes are wound the other way: flip them into VOLMAP's convention.
+  const auto input_signs = orient3d_tets(mesh.xyz.data(), mesh.num_vertices(), mesh.tets.data(), mesh.num_tets(), nullptr);
+  if (input_signs.negative == mesh.num_tets())
+    for (std::size_t t = 0; t < mesh.num_tets(); ++t) std::swap(mesh.tets[4 * t], mesh.tets[4 * t + 1]);
+  for (const char* name : {"star", "octa"}) {
+    CAPTURE(name);
+    const Domain d = builtin_domain(name);
+    SurfaceMapOptions single;
+    single.rotate_probes = false;
+    std::size_t fewest = 0;
+    std::size_t unrotated = 0;
+    for (int r = 0; r < kNumProbeRotations; ++r) {
+      try {
+        const std::size_t tets = map_surface_to_domain(mesh, with_rotated_probes(d, r), single).mesh.num_tets();
+        if (r == 0) unrotated = tets;
+        if (fewest == 0 || tets < fewest) fewest = tets;
+      } catch (const Error&) {
+      }
+    }
+    REQUIRE(unrotated > 0);
+    const SurfaceMapResult best = map_surface_to_domain(mesh, d);
+    CHECK(best.mesh.num_tets() == fewest);
+    CHECK(fewest < unrotated);  // on this mesh the search pays
+    CHECK(best.attempt.find("probes rotated") != std::string::npos);
+    CHECK(check_surface_map(best.mesh, best.map, &d).ok);
+    const auto signs = orient3d_tets(best.mesh.xyz.data(), best.mesh.num_vertices(), best.mesh.tets.data(),
+                                     best.mesh.num_tets(), nullptr);
+    CHECK(signs.positive == best.mesh.num_tets());
+    MESSAGE(std::string(name) << ": " << unrotated << " tets unrotated, " << fewest << " with the best placement");
+  }
+}
