@@ -131,6 +131,22 @@ std::optional<SurfaceMapResult> first_map(SourceTetMesh& source, const BoundaryS
   return std::nullopt;
 }
 
+// Step 6: the search again with the probes rotated; `best` becomes the map with the fewest tets
+// (the unrotated one on a tie).
+void keep_fewest_tets_over_rotations(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
+                                     const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
+                                     SurfaceMapResult& best) {
+  for (int r = 1; r < kNumProbeRotations; ++r) {
+    std::vector<std::string> ignored;
+    std::optional<SurfaceMapResult> other =
+        first_map(source, boundary, with_rotated_probes(domain, r), options, bmin, bmax, ignored);
+    if (!other || other->mesh.num_tets() >= best.mesh.num_tets()) continue;
+    other->attempt += ", probes rotated (" + std::to_string(r) + ")";
+    other->failed_attempts = std::move(best.failed_attempts);
+    best = std::move(*other);
+  }
+}
+
 }  // namespace
 
 SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& domain, const SurfaceMapOptions& options) {
@@ -153,20 +169,9 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
     throw Error(ErrorKind::Failed, "", 0, "cannot map the boundary onto " + domain.name + " (" + all + ")");
   }
   best->failed_attempts = std::move(failed);
-  // Step 6: a map whose splits grew the mesh by more than kRotationSearchGrowth is searched again
-  // with the probes rotated; the fewest tets win (the unrotated map on a tie).
   if (options.rotate_probes && !options.reference_chord_splits &&
-      double(best->mesh.num_tets()) > (1 + kRotationSearchGrowth) * double(mesh.num_tets())) {
-    for (int r = 1; r < kNumProbeRotations; ++r) {
-      std::vector<std::string> ignored;
-      std::optional<SurfaceMapResult> other =
-          first_map(source, boundary, with_rotated_probes(domain, r), options, bmin, bmax, ignored);
-      if (!other || other->mesh.num_tets() >= best->mesh.num_tets()) continue;
-      other->attempt += ", probes rotated (" + std::to_string(r) + ")";
-      other->failed_attempts = std::move(best->failed_attempts);
-      best = std::move(other);
-    }
-  }
+      double(best->mesh.num_tets()) > (1 + kRotationSearchGrowth) * double(mesh.num_tets()))
+    keep_fewest_tets_over_rotations(source, boundary, domain, options, bmin, bmax, *best);
   return std::move(*best);
 }
 
