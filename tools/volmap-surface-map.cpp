@@ -1,6 +1,7 @@
 // volmap-surface-map <cube|tet|pyr|octa|star|sphere|custom|polycube> <in.mesh> <out_map.txt>
 //                    [--domain file] [--cells <cells file|cross7|L3>] [--cell-size S]
-//                    [--refined out.mesh] [--volmap-precision] [--reference-splits] [--json]
+//                    [--refined out.mesh] [--volmap-precision] [--reference-splits]
+//                    [--reference-placement] [--json]
 // `polycube:<cells>` is the same as `polycube --cells <cells>` (<volmap/surface/polycube.hpp>).
 // Maps the boundary of a genus-0 tet mesh (a valid VOLMAP input: input_mesh.hpp) onto a base domain
 // (see <volmap/surface/surface_map.hpp>), checks the map exactly and only then writes it (shortest
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
                "volmap-surface-map"};
   std::string domain_name, mesh_path, map_path, domain_file, refined_path, cells;
   double cell_size = volmap::kDefaultPolycubeCellSize;
-  bool json = false, volmap_precision = false, reference_splits = false;
+  bool json = false, volmap_precision = false, reference_splits = false, reference_placement = false;
   app.add_option("domain", domain_name,
                  "cube, tet, pyr, octa, star, sphere, custom (with --domain) or polycube (with --cells; or "
                  "polycube:<cells>)")
@@ -48,6 +49,10 @@ int main(int argc, char** argv) {
                "arc; its split counts). Default: split only the chords that block an arc or whose ends lie on "
                "one straight side of the domain; the reference rule runs too and the map whose mesh has "
                "fewer tets is kept");
+  app.add_flag("--reference-placement", reference_placement,
+               "place the nodes by the reference's probes only. Default: when the splits add more than 1 % "
+               "to the tets, the map is searched again with the probes turned by each of the 23 other "
+               "rotations of the bounding box, and the map whose mesh has the fewest tets is kept");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
@@ -91,6 +96,7 @@ int main(int argc, char** argv) {
     const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     volmap::SurfaceMapOptions options;
     options.reference_chord_splits = reference_splits;
+    options.rotate_probes = !reference_placement;
     volmap::SurfaceMapResult r = volmap_tools::naming_file(mesh_path, [&] {
       if (sphere)
         return volmap::map_surface_to_sphere(
