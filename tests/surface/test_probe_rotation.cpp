@@ -30,13 +30,14 @@ TEST_CASE("the 24 probe rotations are distinct, proper and keep the probes in th
   for (const char* name : {"cube", "tet", "pyr", "octa", "star"}) {
     CAPTURE(name);
     const Domain d = builtin_domain(name);
-    // Four probed nodes spanning a volume (every built-in has them among its first five nodes).
+    // Four probed nodes spanning a volume.
     int quad[4] = {-1, -1, -1, -1};
     const Point3 m{0, 0, 0}, M{1, 1, 1};
-    for (int a = 0; a < 5 && quad[0] < 0; ++a)
-      for (int b = a + 1; b < 5 && quad[0] < 0; ++b)
-        for (int c = b + 1; c < 5 && quad[0] < 0; ++c)
-          for (int e = c + 1; e < 6 && quad[0] < 0; ++e)
+    const int n = int(d.num_nodes());
+    for (int a = 0; a < n && quad[0] < 0; ++a)
+      for (int b = a + 1; b < n && quad[0] < 0; ++b)
+        for (int c = b + 1; c < n && quad[0] < 0; ++c)
+          for (int e = c + 1; e < n && quad[0] < 0; ++e)
             if (d.has_probe(a) && d.has_probe(b) && d.has_probe(c) && d.has_probe(e) && probe_volume(d, a, b, c, e) != 0)
               quad[0] = a, quad[1] = b, quad[2] = c, quad[3] = e;
     REQUIRE(quad[0] >= 0);

@@ -28,12 +28,11 @@ Point3 cross(const Point3& a, const Point3& b) {
 }
 double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
 
-// Reference bbox corner numbering (§3): 0 (m,m,m) 1 (m,m,M) 2 (M,m,M) 3 (M,m,m) 4 (m,M,m) 5 (m,M,M)
-// 6 (M,M,M) 7 (M,M,m).
+// Reference bbox corner numbering (kBboxCornerBits): 0 (m,m,m) 1 (m,m,M) 2 (M,m,M) 3 (M,m,m)
+// 4 (m,M,m) 5 (m,M,M) 6 (M,M,M) 7 (M,M,m).
 Point3 bbox_corner(int c, const Point3& m, const Point3& M) {
-  static constexpr int sel[8][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0},
-                                    {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}};
-  return {sel[c][0] ? M[0] : m[0], sel[c][1] ? M[1] : m[1], sel[c][2] ? M[2] : m[2]};
+  const int* sel = kBboxCornerBits[c];
+  return {sel[0] ? M[0] : m[0], sel[1] ? M[1] : m[1], sel[2] ? M[2] : m[2]};
 }
 
 Domain make_base(DomainKind kind, const std::string& name, std::vector<Point3> targets,

@@ -31,18 +31,15 @@ std::array<Matrix, kNumProbeRotations> cube_rotations() {
   return out;
 }
 
-// Reference bbox corner numbering (domain.cpp): corner c selects min (0) or max (1) per axis.
-constexpr int kCornerBits[8][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}};
-
 int rotated_corner(const Matrix& m, int c) {
   int bits[3];
   for (int r = 0; r < 3; ++r) {
     int x = 0;  // R(2·bit − 1) in {−1, 1}
-    for (int k = 0; k < 3; ++k) x += m[r][k] * (2 * kCornerBits[c][k] - 1);
+    for (int k = 0; k < 3; ++k) x += m[r][k] * (2 * kBboxCornerBits[c][k] - 1);
     bits[r] = x > 0 ? 1 : 0;
   }
   for (int k = 0; k < 8; ++k)
-    if (kCornerBits[k][0] == bits[0] && kCornerBits[k][1] == bits[1] && kCornerBits[k][2] == bits[2]) return k;
+    if (kBboxCornerBits[k][0] == bits[0] && kBboxCornerBits[k][1] == bits[1] && kBboxCornerBits[k][2] == bits[2]) return k;
   return c;  // unreachable: every sign pattern is a corner
 }
 

@@ -72,6 +72,11 @@ struct Domain {
   std::vector<int> trace_order() const;
 };
 
+// The reference's bbox corner numbering (volmap-reference.md §3): corner c takes the minimum (0) or
+// the maximum (1) of the bounding box per axis.
+inline constexpr int kBboxCornerBits[8][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0},
+                                              {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}};
+
 // The domain with its node probes turned by one of the 24 rotations of the bounding box about its
 // centre (0 = unchanged): the nodes then land on other extremities of the input, in the same cyclic
 // arrangement (a proper rotation keeps the orientation). The targets, arcs and faces are unchanged.
