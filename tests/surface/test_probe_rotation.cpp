@@ -1,5 +1,6 @@
-// Node probe rotations (domain.hpp with_rotated_probes) and the surface map's search over them
-// (surface_map.hpp step 6): the 24 rotations are distinct proper rotations of the probes, and a
+// Node probe rotations and pulls (domain.hpp with_rotated_probes, with_pulled_probes) and the surface
+// map's search over the rotations (surface_map.hpp step 6): the 24 rotations are distinct proper
+// rotations of the probes, a pull moves each probe towards the box centre by its fraction, and a
 // coarse mesh whose unrotated map needs many splits gets the fewest-tet map of the 24, recomputed
 // here one rotation at a time, which passes the exact check.
 #include <doctest/doctest.h>
@@ -71,6 +72,37 @@ TEST_CASE("the 24 probe rotations are distinct, proper and keep the probes in th
       CHECK(placements.size() == std::size_t(kNumProbeRotations));
   }
   CHECK_THROWS(with_rotated_probes(builtin_domain("cube"), kNumProbeRotations));
+}
+
+TEST_CASE("pulled probes lie on the segment from the box centre to the original probe, at the pull's fraction") {
+  const Point3 m{-2, 1, 10}, M{6, 3, 11};  // not a unit box: the pull is per axis of the bounding box
+  const Point3 centre{2, 2, 10.5};
+  for (const char* name : {"cube", "tet", "pyr", "octa", "star"}) {
+    CAPTURE(name);
+    const Domain d = builtin_domain(name);
+    for (double pull : {1.0, 0.75, 0.5, 0.25}) {
+      CAPTURE(pull);
+      const Domain pd = with_pulled_probes(d, pull);
+      CHECK(pd.targets == d.targets);
+      for (std::size_t n = 0; n < d.num_nodes(); ++n) {
+        REQUIRE(pd.has_probe(int(n)) == d.has_probe(int(n)));
+        if (!d.has_probe(int(n))) continue;
+        const Point3 p = d.probe(int(n), m, M), q = pd.probe(int(n), m, M);
+        for (int k = 0; k < 3; ++k) CHECK(q[k] == doctest::Approx(centre[k] + pull * (p[k] - centre[k])));
+      }
+      // Pulls and rotations compose: a pulled placement turned keeps its distance to the centre.
+      const Domain turned = with_rotated_probes(pd, 7);
+      for (std::size_t n = 0; n < d.num_nodes(); ++n) {
+        if (!d.has_probe(int(n))) continue;
+        const Point3 a = pd.probe(int(n), {0, 0, 0}, {1, 1, 1}), b = turned.probe(int(n), {0, 0, 0}, {1, 1, 1});
+        double ra = 0, rb = 0;
+        for (int k = 0; k < 3; ++k) ra += (a[k] - 0.5) * (a[k] - 0.5), rb += (b[k] - 0.5) * (b[k] - 0.5);
+        CHECK(rb == doctest::Approx(ra));
+      }
+    }
+  }
+  CHECK_THROWS(with_pulled_probes(builtin_domain("cube"), 0.0));
+  CHECK_THROWS(with_pulled_probes(builtin_domain("cube"), 1.5));
 }
 
 TEST_CASE("a coarse octopus onto the star and the octahedron: the map of the 24 placements with the fewest tets") {

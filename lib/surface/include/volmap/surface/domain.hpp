@@ -83,6 +83,11 @@ inline constexpr int kBboxCornerBits[8][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {
 inline constexpr int kNumProbeRotations = 24;
 Domain with_rotated_probes(const Domain& domain, int rotation);
 
+// The domain with its node probes pulled towards the centre of the bounding box, to `scale` (in
+// (0, 1]) of their offset from it: the nodes then land on boundary points nearer the middle of
+// the input's extent. The targets, arcs and faces are unchanged.
+Domain with_pulled_probes(const Domain& domain, double scale);
+
 // "cube", "tet", "pyr", "octa", "star" (also the reference's upper-case names CUBE, TETRAHEDRON,
 // PYRAMID, OCTAHEDRON, STAR). Throws Error(BadInput) for anything else.
 Domain builtin_domain(const std::string& name);

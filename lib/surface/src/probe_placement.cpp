@@ -1,14 +1,17 @@
-// probe_rotation.cpp — the 24 rotations of a domain's node probes (domain.hpp). Conventions: the
-// probes live in the input's bounding box normalised to [0,1]³; a rotation R of the cube about its
-// centre moves probe fraction f to 0.5 + R(f − 0.5), and a bbox corner (reference numbering) to the
-// corner there. Rotation 0 is the identity; the others are the proper signed permutation matrices in
-// a fixed order (permutation of the axes, then signs), so that an index names the same rotation on
-// every run.
+// probe_placement.cpp — other placements of a domain's node probes (domain.hpp): the 24 rotations
+// and the pulls towards the centre. Conventions: the probes live in the input's bounding box
+// normalised to [0,1]³; a rotation R of the cube about its centre moves probe fraction f to
+// 0.5 + R(f − 0.5), and a bbox corner (reference numbering) to the corner there; a pull by s moves f
+// to 0.5 + s(f − 0.5) (a corner probe becomes the fraction of its corners' mean). Rotation 0 is the
+// identity; the others are the proper signed permutation matrices in a fixed order (permutation of
+// the axes, then signs), so that an index names the same rotation on every run.
 #include <volmap/surface/domain.hpp>
 #include <volmap/core/error.hpp>
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace volmap {
 namespace {
@@ -63,6 +66,27 @@ Domain with_rotated_probes(const Domain& domain, int rotation) {
       g[std::size_t(r)] = 0.5 + x;
     }
     f = g;
+  }
+  return d;
+}
+
+Domain with_pulled_probes(const Domain& domain, double scale) {
+  if (!(scale > 0 && scale <= 1))
+    throw Error(ErrorKind::BadInput, "", 0, "probe pull out of (0, 1]: " + std::to_string(scale));
+  if (scale == 1) return domain;
+  Domain d = domain;
+  for (std::size_t node = 0; node < d.num_nodes(); ++node) {
+    std::array<double, 3>& f = d.probe_fraction[node];
+    std::vector<int>& corners = d.probe_corners[node];
+    if (!corners.empty()) {
+      f = {0, 0, 0};
+      for (int c : corners)
+        for (int k = 0; k < 3; ++k) f[std::size_t(k)] += kBboxCornerBits[c][k];
+      for (double& x : f) x /= double(corners.size());
+      corners.clear();
+    }
+    if (std::isnan(f[0])) continue;
+    for (double& x : f) x = 0.5 + scale * (x - 0.5);
   }
   return d;
 }
