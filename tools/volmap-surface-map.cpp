@@ -52,7 +52,9 @@ int main(int argc, char** argv) {
   app.add_flag("--reference-placement", reference_placement,
                "place the nodes by the reference's probes only. Default: when the splits add more than 1 % "
                "to the tets, the map is searched again with the probes turned by each of the 23 other "
-               "rotations of the bounding box, and the map whose mesh has the fewest tets is kept");
+               "rotations of the bounding box, then, while it still adds more than 1 %, with the probes "
+               "pulled towards the box centre (75, 50, 25 %) and rotated; the map whose mesh has the "
+               "fewest tets is kept");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
@@ -96,7 +98,7 @@ int main(int argc, char** argv) {
     const volmap::TetMeshData mesh = volmap_tools::read_input_tet_mesh(inputs, mesh_path);
     volmap::SurfaceMapOptions options;
     options.reference_chord_splits = reference_splits;
-    options.rotate_probes = !reference_placement;
+    options.search_placements = !reference_placement;
     volmap::SurfaceMapResult r = volmap_tools::naming_file(mesh_path, [&] {
       if (sphere)
         return volmap::map_surface_to_sphere(

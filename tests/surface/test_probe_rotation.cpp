@@ -1,8 +1,8 @@
-// Node probe rotations and pulls (domain.hpp with_rotated_probes, with_pulled_probes) and the surface
-// map's search over the rotations (surface_map.hpp step 6): the 24 rotations are distinct proper
-// rotations of the probes, a pull moves each probe towards the box centre by its fraction, and a
-// coarse mesh whose unrotated map needs many splits gets the fewest-tet map of the 24, recomputed
-// here one rotation at a time, which passes the exact check.
+// Node probe placements (domain.hpp with_rotated_probes, with_pulled_probes) and the surface map's
+// search over them (surface_map.hpp steps 6 and 7): the 24 rotations are distinct proper rotations
+// of the probes, a pull moves each probe towards the box centre by its fraction, and a coarse mesh
+// whose unrotated map needs many splits gets the map of the search recomputed here one placement
+// at a time, which passes the exact check.
 #include <doctest/doctest.h>
 #include <volmap/io/io.hpp>
 #include <volmap/surface/domain.hpp>
@@ -105,37 +105,47 @@ TEST_CASE("pulled probes lie on the segment from the box centre to the original 
   CHECK_THROWS(with_pulled_probes(builtin_domain("cube"), 1.5));
 }
 
-TEST_CASE("a coarse octopus onto the star and the octahedron: the map of the 24 placements with the fewest tets") {
+TEST_CASE("a coarse octopus onto the star and the octahedron: the search over rotated, then pulled placements") {
   VOLMAP_REQUIRE_DATA(path, "tetmeshes/libigl_tutorial/octopus-low.mesh");
   TetMeshData mesh = read_tet_mesh(path.string());
   // libigl's tutorial meshes are wound the other way: flip them into VOLMAP's convention.
   const auto input_signs = orient3d_tets(mesh.xyz.data(), mesh.num_vertices(), mesh.tets.data(), mesh.num_tets(), nullptr);
   if (input_signs.negative == mesh.num_tets())
     for (std::size_t t = 0; t < mesh.num_tets(); ++t) std::swap(mesh.tets[4 * t], mesh.tets[4 * t + 1]);
+  const double small = 1.01 * double(mesh.num_tets());  // a map adding at most 1 % ends a search
   for (const char* name : {"star", "octa"}) {
     CAPTURE(name);
     const Domain d = builtin_domain(name);
     SurfaceMapOptions single;
-    single.rotate_probes = false;
-    std::size_t fewest = 0;
-    std::size_t unrotated = 0;
-    for (int r = 0; r < kNumProbeRotations; ++r) {
+    single.search_placements = false;
+    auto tets_at = [&](const Domain& placed) -> std::size_t {
       try {
-        const std::size_t tets = map_surface_to_domain(mesh, with_rotated_probes(d, r), single).mesh.num_tets();
-        if (r == 0) unrotated = tets;
-        if (fewest == 0 || tets < fewest) fewest = tets;
+        return map_surface_to_domain(mesh, placed, single).mesh.num_tets();
       } catch (const Error&) {
+        return 0;  // no map at this placement
       }
-    }
-    REQUIRE(unrotated > 0);
+    };
+    // The search recomputed one placement at a time (surface_map.hpp steps 6 and 7).
+    const std::size_t unrotated = tets_at(d);
+    REQUIRE(unrotated > small);
+    std::size_t rotated = unrotated;
+    for (int r = 1; r < kNumProbeRotations; ++r)
+      if (const std::size_t t = tets_at(with_rotated_probes(d, r)); t > 0 && t < rotated) rotated = t;
+    REQUIRE(double(rotated) > small);  // on this mesh the pulls run
+    std::size_t fewest = rotated;
+    for (double pull : {0.75, 0.5, 0.25})
+      for (int r = 0; r < kNumProbeRotations && double(fewest) > small; ++r)
+        if (const std::size_t t = tets_at(with_rotated_probes(with_pulled_probes(d, pull), r)); t > 0 && t < fewest) fewest = t;
     const SurfaceMapResult best = map_surface_to_domain(mesh, d);
     CHECK(best.mesh.num_tets() == fewest);
-    CHECK(fewest < unrotated);  // on this mesh the search pays
-    CHECK(best.attempt.find("probes rotated") != std::string::npos);
+    CHECK(rotated < unrotated);  // on this mesh both searches pay
+    CHECK(fewest < rotated);
+    CHECK(best.attempt.find("probes pulled") != std::string::npos);
     CHECK(check_surface_map(best.mesh, best.map, &d).ok);
     const auto signs = orient3d_tets(best.mesh.xyz.data(), best.mesh.num_vertices(), best.mesh.tets.data(),
                                      best.mesh.num_tets(), nullptr);
     CHECK(signs.positive == best.mesh.num_tets());
-    MESSAGE(std::string(name) << ": " << unrotated << " tets unrotated, " << fewest << " with the best placement");
+    MESSAGE(std::string(name) << ": " << mesh.num_tets() << " input tets; " << unrotated << " unrotated, " << rotated
+                              << " rotated, " << fewest << " pulled");
   }
 }

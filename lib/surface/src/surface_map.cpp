@@ -49,9 +49,13 @@ void require_sphere_topology(const BoundarySurface& b) {
     bad_input("the boundary surface is not a genus-0 sphere (Euler characteristic " + std::to_string(chi) + ")");
 }
 
-// Step 6 runs when the splits add more than this fraction of the input's tets: below it the growth
-// does not matter and 23 more searches would multiply the time (armadillo → octa: 72 of 72,923 tets).
-constexpr double kRotationSearchGrowth = 0.01;
+// Steps 6 and 7 run when the splits add more than this fraction of the input's tets: below it the
+// growth does not matter and more searches would multiply the time (armadillo → octa: 72 of 72,923
+// tets). Step 7 stops at the first map within it.
+constexpr double kPlacementSearchGrowth = 0.01;
+// Step 7's pulls, tried in this order: the nearer the extremities, the more the map looks like the
+// reference's.
+constexpr double kProbePulls[] = {0.75, 0.5, 0.25};
 
 struct Attempt {
   const std::vector<int>* order;
@@ -131,19 +135,45 @@ std::optional<SurfaceMapResult> first_map(SourceTetMesh& source, const BoundaryS
   return std::nullopt;
 }
 
+// The search (first_map) at another placement of the node probes; `best` becomes its map when that
+// has fewer tets, with `placement` appended to the attempt's name.
+void keep_if_fewer_tets(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& placed,
+                        const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
+                        const std::string& placement, SurfaceMapResult& best) {
+  std::vector<std::string> ignored;
+  std::optional<SurfaceMapResult> other = first_map(source, boundary, placed, options, bmin, bmax, ignored);
+  if (!other || other->mesh.num_tets() >= best.mesh.num_tets()) return;
+  other->attempt += ", " + placement;
+  other->failed_attempts = std::move(best.failed_attempts);
+  best = std::move(*other);
+}
+
+bool adds_at_most(const SurfaceMapResult& map, std::size_t input_tets, double growth) {
+  return double(map.mesh.num_tets()) <= (1 + growth) * double(input_tets);
+}
+
 // Step 6: the search again with the probes rotated; `best` becomes the map with the fewest tets
 // (the unrotated one on a tie).
 void keep_fewest_tets_over_rotations(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
                                      const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
                                      SurfaceMapResult& best) {
-  for (int r = 1; r < kNumProbeRotations; ++r) {
-    std::vector<std::string> ignored;
-    std::optional<SurfaceMapResult> other =
-        first_map(source, boundary, with_rotated_probes(domain, r), options, bmin, bmax, ignored);
-    if (!other || other->mesh.num_tets() >= best.mesh.num_tets()) continue;
-    other->attempt += ", probes rotated (" + std::to_string(r) + ")";
-    other->failed_attempts = std::move(best.failed_attempts);
-    best = std::move(*other);
+  for (int r = 1; r < kNumProbeRotations; ++r)
+    keep_if_fewer_tets(source, boundary, with_rotated_probes(domain, r), options, bmin, bmax,
+                       "probes rotated (" + std::to_string(r) + ")", best);
+}
+
+// Step 7: the search again with the probes pulled towards the centre (kProbePulls) and rotated;
+// `best` becomes the map with the fewest tets (the earlier one on a tie). It stops at the first map
+// that adds at most kPlacementSearchGrowth.
+void keep_fewest_tets_over_pulls(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
+                                 const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
+                                 std::size_t input_tets, SurfaceMapResult& best) {
+  for (double pull : kProbePulls) {
+    const Domain pulled = with_pulled_probes(domain, pull);
+    for (int r = 0; r < kNumProbeRotations && !adds_at_most(best, input_tets, kPlacementSearchGrowth); ++r)
+      keep_if_fewer_tets(source, boundary, with_rotated_probes(pulled, r), options, bmin, bmax,
+                         "probes pulled to " + std::to_string(int(100 * pull)) + " % and rotated (" + std::to_string(r) + ")",
+                         best);
   }
 }
 
@@ -169,9 +199,12 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
     throw Error(ErrorKind::Failed, "", 0, "cannot map the boundary onto " + domain.name + " (" + all + ")");
   }
   best->failed_attempts = std::move(failed);
-  if (options.rotate_probes && !options.reference_chord_splits &&
-      double(best->mesh.num_tets()) > (1 + kRotationSearchGrowth) * double(mesh.num_tets()))
-    keep_fewest_tets_over_rotations(source, boundary, domain, options, bmin, bmax, *best);
+  if (options.search_placements && !options.reference_chord_splits) {
+    if (!adds_at_most(*best, mesh.num_tets(), kPlacementSearchGrowth))
+      keep_fewest_tets_over_rotations(source, boundary, domain, options, bmin, bmax, *best);
+    if (!adds_at_most(*best, mesh.num_tets(), kPlacementSearchGrowth))
+      keep_fewest_tets_over_pulls(source, boundary, domain, options, bmin, bmax, mesh.num_tets(), *best);
+  }
   return std::move(*best);
 }
 
