@@ -13,6 +13,8 @@
 #include "working_surface.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,29 +74,48 @@ void subdivide(WorkingSurface& s, int rounds) {
   }
 }
 
-SurfaceMapResult run_attempt(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
-                             const Attempt& attempt, const Point3& bmin, const Point3& bmax) {
-  WorkingSurface surface(boundary, source.num_input_vertices());
-  subdivide(surface, attempt.subdivisions);
-  const EmbeddedGraph graph = embed_domain_graph(surface, domain, *attempt.order, attempt.chords, bmin, bmax);
-  check_rotations(surface, domain, graph);
-  const std::vector<double> img = embed_charts(surface, domain, graph);
-  SourceTetMesh::Refined refined = source.refine(surface.splits);
+// Steps 1–3 of one attempt: the domain's graph traced on the surface, the splits replayed on the
+// tets. Its tet count is known before the costly charts.
+struct TracedAttempt {
+  TracedAttempt(const BoundarySurface& boundary, std::uint32_t first_new_vid, const Attempt& a)
+      : attempt(&a), surface(boundary, first_new_vid) {}
+  const Attempt* attempt;
+  WorkingSurface surface;
+  EmbeddedGraph graph;
+  SourceTetMesh::Refined refined;
+  std::size_t num_tets() const { return refined.mesh.num_tets(); }
+};
 
+std::unique_ptr<TracedAttempt> trace_attempt(SourceTetMesh& source, const BoundarySurface& boundary,
+                                             const Domain& domain, const Attempt& attempt, const Point3& bmin,
+                                             const Point3& bmax) {
+  auto t = std::make_unique<TracedAttempt>(boundary, source.num_input_vertices(), attempt);
+  subdivide(t->surface, attempt.subdivisions);
+  t->graph = embed_domain_graph(t->surface, domain, *attempt.order, attempt.chords, bmin, bmax);
+  check_rotations(t->surface, domain, t->graph);
+  t->refined = source.refine(t->surface.splits);
+  return t;
+}
+
+// Steps 4–5 of a traced attempt: the charts, then the exact check.
+SurfaceMapResult finish_attempt(TracedAttempt& t, const Domain& domain) {
+  const WorkingSurface& surface = t.surface;
+  const std::vector<double> img = embed_charts(t.surface, domain, t.graph);
   SurfaceMapResult result;
-  result.mesh = std::move(refined.mesh);
+  result.mesh = std::move(t.refined.mesh);
   result.added_vertices = surface.splits.size();
-  result.collided_nodes = graph.collided_nodes;
-  for (auto v : graph.node_vertex) result.node_vertices.push_back(surface.vid_of(v));
+  result.collided_nodes = t.graph.collided_nodes;
+  for (auto v : t.graph.node_vertex) result.node_vertices.push_back(surface.vid_of(v));
   result.map.vids.reserve(surface.num_vertices());
   result.map.xyz.reserve(3 * surface.num_vertices());
   for (auto v : surface.mesh.vertices()) {  // index order = vid order
     result.map.vids.push_back(surface.vid_of(v));
     result.map.xyz.insert(result.map.xyz.end(), &img[3 * v.idx()], &img[3 * v.idx()] + 3);
   }
-  result.check = check_surface_map(result.mesh.num_vertices(), refined.boundary, result.map, &domain);
+  result.check = check_surface_map(result.mesh.num_vertices(), t.refined.boundary, result.map, &domain);
   if (!result.check.ok)
     throw Error(ErrorKind::Failed, "", 0, "the computed map fails the exact check: " + result.check.reason);
+  result.attempt = t.attempt->name;
   return result;
 }
 
@@ -103,10 +124,14 @@ SurfaceMapResult run_attempt(SourceTetMesh& source, const BoundarySurface& bound
 // free vertices than nodes, no room between arcs), 1 and 2 rounds of splitting every boundary
 // edge first (spanning tree order). Within a group both chord rules run (the reference's alone
 // with options.reference_chord_splits) and the map whose mesh has fewer tets wins (the lean one on
-// a tie); the first group with a map ends the search. Failed attempts are appended to `failed`.
+// a tie): the traced attempts are finished in that order until one passes. The first group with a
+// map ends the search. Failed attempts are appended to `failed`. With `must_beat` (a placement
+// search), a group whose traced attempts all have at least that many tets ends the search without
+// a map: it cannot win, so its charts are not computed.
 std::optional<SurfaceMapResult> first_map(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,
                                           const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
-                                          std::vector<std::string>& failed) {
+                                          std::vector<std::string>& failed,
+                                          std::size_t must_beat = std::numeric_limits<std::size_t>::max()) {
   const std::vector<int> reference = domain.trace_order();
   const std::vector<int> tree = spanning_tree_first_order(domain);
   for (int subdivisions = 0; subdivisions <= 2; ++subdivisions)
@@ -119,18 +144,25 @@ std::optional<SurfaceMapResult> first_map(SourceTetMesh& source, const BoundaryS
       std::vector<Attempt> group;
       if (!options.reference_chord_splits) group.push_back({order, subdivisions, ChordSplitRule::OnlyAlongOneLine, name});
       group.push_back({order, subdivisions, ChordSplitRule::AfterEveryArc, name + ", reference chord splits"});
-      std::optional<SurfaceMapResult> best;
+      std::vector<std::unique_ptr<TracedAttempt>> traced;
       for (const Attempt& a : group) {
         try {
-          SurfaceMapResult r = run_attempt(source, boundary, domain, a, bmin, bmax);
-          r.attempt = a.name;
-          if (!best || r.mesh.num_tets() < best->mesh.num_tets()) best = std::move(r);
+          traced.push_back(trace_attempt(source, boundary, domain, a, bmin, bmax));
         } catch (const Error& e) {
           if (e.kind() != ErrorKind::Failed) throw;
           failed.push_back(a.name + ": " + e.reason());
         }
       }
-      if (best) return best;
+      std::stable_sort(traced.begin(), traced.end(), [](const auto& x, const auto& y) { return x->num_tets() < y->num_tets(); });
+      for (const auto& t : traced) {
+        if (t->num_tets() >= must_beat) return std::nullopt;
+        try {
+          return finish_attempt(*t, domain);
+        } catch (const Error& e) {
+          if (e.kind() != ErrorKind::Failed) throw;
+          failed.push_back(t->attempt->name + ": " + e.reason());
+        }
+      }
     }
   return std::nullopt;
 }
@@ -141,7 +173,8 @@ void keep_if_fewer_tets(SourceTetMesh& source, const BoundarySurface& boundary, 
                         const SurfaceMapOptions& options, const Point3& bmin, const Point3& bmax,
                         const std::string& placement, SurfaceMapResult& best) {
   std::vector<std::string> ignored;
-  std::optional<SurfaceMapResult> other = first_map(source, boundary, placed, options, bmin, bmax, ignored);
+  std::optional<SurfaceMapResult> other =
+      first_map(source, boundary, placed, options, bmin, bmax, ignored, best.mesh.num_tets());
   if (!other || other->mesh.num_tets() >= best.mesh.num_tets()) return;
   other->attempt += ", " + placement;
   other->failed_attempts = std::move(best.failed_attempts);

@@ -42,7 +42,8 @@
 //     Nodes at the very extremities of a thin or coarse part sit where arcs must squeeze past
 //     each other; a little inside there is room (octopus-low → star: 2,129 tets rotated, 1,480
 //     pulled, from 1,140). Maps adding at most 1 % are unchanged by steps 6 and 7, so are the
-//     reference's (reference_chord_splits).
+//     reference's (reference_chord_splits). In both steps a placement whose traced graph already
+//     needs at least as many tets as the best map is dropped before its charts (the costly part).
 #pragma once
 
 #include <volmap/surface/domain.hpp>
