@@ -133,7 +133,7 @@ TEST_CASE("a coarse octopus onto the star and the octahedron: the search over ro
       if (const std::size_t t = tets_at(with_rotated_probes(d, r)); t > 0 && t < rotated) rotated = t;
     REQUIRE(double(rotated) > small);  // on this mesh the pulls run
     std::size_t fewest = rotated;
-    for (double pull : {0.75, 0.5, 0.25})
+    for (double pull : kProbePulls)
       for (int r = 0; r < kNumProbeRotations && double(fewest) > small; ++r)
         if (const std::size_t t = tets_at(with_rotated_probes(with_pulled_probes(d, pull), r)); t > 0 && t < fewest) fewest = t;
     const SurfaceMapResult best = map_surface_to_domain(mesh, d);

@@ -13,6 +13,7 @@
 #include "working_surface.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -55,9 +56,6 @@ void require_sphere_topology(const BoundarySurface& b) {
 // growth does not matter and more searches would multiply the time (armadillo → octa: 72 of 72,923
 // tets). Step 7 stops at the first map within it.
 constexpr double kPlacementSearchGrowth = 0.01;
-// Step 7's pulls, tried in this order: the nearer the extremities, the more the map looks like the
-// reference's.
-constexpr double kProbePulls[] = {0.75, 0.5, 0.25};
 
 struct Attempt {
   const std::vector<int>* order;
@@ -205,7 +203,7 @@ void keep_fewest_tets_over_pulls(SourceTetMesh& source, const BoundarySurface& b
     const Domain pulled = with_pulled_probes(domain, pull);
     for (int r = 0; r < kNumProbeRotations && !adds_at_most(best, input_tets, kPlacementSearchGrowth); ++r)
       keep_if_fewer_tets(source, boundary, with_rotated_probes(pulled, r), options, bmin, bmax,
-                         "probes pulled to " + std::to_string(int(100 * pull)) + " % and rotated (" + std::to_string(r) + ")",
+                         "probes pulled to " + std::to_string(std::lround(100 * pull)) + " % and rotated (" + std::to_string(r) + ")",
                          best);
   }
 }

@@ -37,10 +37,11 @@
 //     depend on where the nodes land: on coarse meshes one placement needs many fewer than another
 //     (octopus-low → star: 389 new vertices unrotated, 287 rotated).
 //  7. When the best rotation still adds more than 1 %, the search goes on with the probes pulled
-//     towards the box centre to 75, 50 and 25 % of their offset (with_pulled_probes), each in the
-//     24 rotations, until a map adds at most 1 %; the fewest tets win (the earlier map on a tie).
+//     towards the box centre (with_pulled_probes, by each of kProbePulls: 90 % of their offset down
+//     to 10 %), each in the 24 rotations, until a map adds at most 1 %; the fewest tets win (the
+//     earlier map on a tie).
 //     Nodes at the very extremities of a thin or coarse part sit where arcs must squeeze past
-//     each other; a little inside there is room (octopus-low → star: 2,129 tets rotated, 1,480
+//     each other; a little inside there is room (octopus-low → star: 2,129 tets rotated, 1,293
 //     pulled, from 1,140). Maps adding at most 1 % are unchanged by steps 6 and 7, so are the
 //     reference's (reference_chord_splits). In both steps a placement whose traced graph already
 //     needs at least as many tets as the best map is dropped before its charts (the costly part).
