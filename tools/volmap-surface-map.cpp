@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
                "place the nodes by the reference's probes only. Default: when the splits add more than 1 % "
                "to the tets, the map is searched again with the probes turned by each of the 23 other "
                "rotations of the bounding box, then, while it still adds more than 1 %, with the probes "
-               "pulled towards the box centre (90 % of their offset down to 10 %) and rotated; the map whose mesh has the "
-               "fewest tets is kept");
+               "pulled towards the box centre (90 % of their offset down to 10 %) and rotated; the map "
+               "whose mesh has the fewest tets is kept");
   app.add_flag("--json", json, "print one JSON object");
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();

@@ -87,9 +87,6 @@ Domain with_rotated_probes(const Domain& domain, int rotation);
 // (0, 1]) of their offset from it: the nodes then land on boundary points nearer the middle of
 // the input's extent. The targets, arcs and faces are unchanged.
 Domain with_pulled_probes(const Domain& domain, double scale);
-// The pulls the surface map's placement search tries (surface_map.hpp step 7), in this order: the
-// nearer the extremities, the more the map looks like the reference's.
-inline constexpr double kProbePulls[] = {0.9, 0.75, 0.6, 0.5, 0.4, 0.25, 0.1};
 
 // "cube", "tet", "pyr", "octa", "star" (also the reference's upper-case names CUBE, TETRAHEDRON,
 // PYRAMID, OCTAHEDRON, STAR). Throws Error(BadInput) for anything else.

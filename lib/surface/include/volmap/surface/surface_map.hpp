@@ -75,6 +75,10 @@ enum class ChordSplitRule {
   AfterEveryArc,     // the reference's: every chord, after each arc
 };
 
+// Step 7's pulls (with_pulled_probes), tried in this order: the nearer the extremities, the more
+// the map looks like the reference's.
+inline constexpr double kProbePulls[] = {0.9, 0.75, 0.6, 0.5, 0.4, 0.25, 0.1};
+
 struct SurfaceMapOptions {
   // true: only the reference's chord rule is tried (its split counts, e.g. to compare with VOLMAP's
   // own surface maps); false: both rules, the map whose mesh has fewer tets kept (step 3 above).
