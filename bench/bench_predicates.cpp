@@ -89,6 +89,22 @@ __attribute__((noinline)) double naive_is(const double* a, const double* b, cons
   return or_::naive_insphere(a, b, c, d, e);
 }
 
+// The floor of any semi-static filter: the naive determinant plus its error bound (the largest
+// |difference| per column, their product, one comparison), with no range guard and no fallback (0 when
+// undecided). Not a predicate (it is wrong under overflow, underflow or directed rounding); it shows
+// what the bound alone costs beside the determinant.
+__attribute__((noinline)) int filter_floor_o3(const double* a, const double* b, const double* c, const double* d) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det = (adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy)) + cdz * (adx * bdy - bdx * ady);
+  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
+  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
+  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
+  if (__builtin_expect(std::fabs(det) > 1.1e-14 * mx * my * mz, 1)) return det > 0 ? 1 : -1;
+  return 0;
+}
+
 template <class F>
 void run_scalar(benchmark::State& state, const Tuples& t, F f) {
   int i = 0;
@@ -297,7 +313,8 @@ BENCHMARK(batch_cgal_epick)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecon
 // CPU clock (preemption is not counted); the counters are the median over blocks:
 //   <contender>_ns     ns per call (scalar) or per tet of one mesh pass (map-check core),
 //   ratio_naive        volmap / naive double determinant (not robust: the cost floor),
-//   ratio_epick        volmap / CGAL Epick (filtered exact), when CGAL is found.
+//   ratio_epick        volmap / CGAL Epick (filtered exact), when CGAL is found,
+//   ratio_filter_floor volmap / the bare semi-static bound (filter_floor_o3; orient3d only).
 //   anchor_orient3d_random         one orient3d call on random doubles in [-1,1]³ (stage A decides);
 //                                  naive is out of line (one call, like ours); CGAL is inlined.
 //   anchor_map_check_core/<threads> the exact positivity pass of a map check: input Kuhn grid
@@ -348,9 +365,11 @@ void run_anchored(benchmark::State& state, std::vector<Contender>& cs, double it
     ns[k] = 1e9 * median(cs[k].seconds) / items_per_block;
     state.counters[std::string(cs[k].name) + "_ns"] = ns[k];
   }
-  // cs[0] is ours, cs[1] naive, cs[2] CGAL Epick when present.
-  state.counters["ratio_naive"] = ns[0] / ns[1];
-  if (cs.size() > 2) state.counters["ratio_epick"] = ns[0] / ns[2];
+  // cs[0] is ours, cs[1] naive; ratio_<name> = ours / that contender. A filter floor is also given
+  // per naive call (filter_floor_per_naive): the least any semi-static filter can cost.
+  for (std::size_t k = 1; k < cs.size(); ++k) state.counters[std::string("ratio_") + cs[k].name] = ns[0] / ns[k];
+  for (std::size_t k = 2; k < cs.size(); ++k)
+    if (std::string(cs[k].name) == "filter_floor") state.counters["filter_floor_per_naive"] = ns[k] / ns[1];
 }
 
 void anchor_orient3d_random(benchmark::State& state) {
@@ -380,6 +399,12 @@ void anchor_orient3d_random(benchmark::State& state) {
                   return s;
                 }, {}});
 #endif
+  cs.push_back({"filter_floor", [&t] {
+                  long s = 0;
+                  for (int r = 0; r < kRounds; ++r)
+                    for (int i = 0; i < kTuples; ++i) s += filter_floor_o3(t.p(i, 0), t.p(i, 1), t.p(i, 2), t.p(i, 3));
+                  return s;
+                }, {}});
   run_anchored(state, cs, double(kRounds) * kTuples, false);
 }
 BENCHMARK(anchor_orient3d_random)->MinTime(1.0);

@@ -17,7 +17,8 @@
 // Decide when |det| > kSemiStatic·P. The SSE2 build expands along the z column, the AVX2 build along
 // a's row; both bounds hold, both return the exact sign, they may only differ in which rare inputs
 // they leave to the guarded layers.
-// Dispatch: through a function pointer that the first call sets to the AVX2 build when the CPU has it
+// Dispatch: volmap::orient3d (inline in the header) calls through detail::orient3d_impl, a function
+// pointer that the first call sets to the AVX2 build when the CPU has it
 // (__builtin_cpu_supports("avx2")), else the SSE2/baseline build. (Not an ifunc: an ifunc resolver
 // runs before sanitizer runtimes are initialised and clang rejects C++ resolvers.)
 #include <volmap/predicates.hpp>
@@ -138,24 +139,22 @@ bool cpu_has_avx2() { return false; }
 
 namespace {
 
-using Orient3dImpl = int (*)(const double*, const double*, const double*, const double*);
-
 int orient3d_first_call(const double* a, const double* b, const double* c, const double* d);
+
+}  // namespace
 
 // Constant-initialised, so a call from any static initialiser sees a usable pointer; the first call
 // stores the build this CPU supports (every thread stores the same value).
-std::atomic<Orient3dImpl> g_orient3d{orient3d_first_call};
+std::atomic<detail::Orient3dImpl> detail::orient3d_impl{orient3d_first_call};
+
+namespace {
 
 int orient3d_first_call(const double* a, const double* b, const double* c, const double* d) {
-  const Orient3dImpl impl = detail::cpu_has_avx2() ? detail::orient3d_avx2 : detail::orient3d_sse2;
-  g_orient3d.store(impl, std::memory_order_relaxed);
+  const detail::Orient3dImpl impl = detail::cpu_has_avx2() ? detail::orient3d_avx2 : detail::orient3d_sse2;
+  detail::orient3d_impl.store(impl, std::memory_order_relaxed);
   return impl(a, b, c, d);
 }
 
 }  // namespace
-
-int orient3d(const double* a, const double* b, const double* c, const double* d) {
-  return g_orient3d.load(std::memory_order_relaxed)(a, b, c, d);
-}
 
 }  // namespace volmap

@@ -22,6 +22,7 @@
 // instead: see FpEnvironmentScope at the end of this header.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -39,7 +40,7 @@ class NonFiniteInput : public std::domain_error {
 
 // Scalar predicates on doubles. Points are arrays of 2 (2D) or 3 (3D) doubles. Return -1, 0, +1.
 int orient2d(const double* a, const double* b, const double* c);
-int orient3d(const double* a, const double* b, const double* c, const double* d);
+inline int orient3d(const double* a, const double* b, const double* c, const double* d);
 int incircle(const double* a, const double* b, const double* c, const double* d);
 int insphere(const double* a, const double* b, const double* c, const double* d, const double* e);
 
@@ -152,5 +153,16 @@ class FpEnvironmentScope {
   unsigned saved_ = 0;     // the caller's MXCSR
   bool switched_ = false;  // saved_ had non-default control bits
 };
+
+// orient3d's fast path is chosen per CPU at the first call (orient3d.cpp: AVX2 or SSE2 build of the
+// semi-static filter); the call goes straight to it, one indirect call and no wrapper.
+namespace detail {
+using Orient3dImpl = int (*)(const double*, const double*, const double*, const double*);
+extern std::atomic<Orient3dImpl> orient3d_impl;
+}  // namespace detail
+
+inline int orient3d(const double* a, const double* b, const double* c, const double* d) {
+  return detail::orient3d_impl.load(std::memory_order_relaxed)(a, b, c, d);
+}
 
 }  // namespace volmap
