@@ -11,7 +11,8 @@
 // the reason goes to <dataset>/<group>_log.txt. Maps made before a later domain refines the mesh are
 // carried onto the refined mesh (lib map_extension) and re-verified, so one mesh serves all domains.
 // Tet meshes (.mesh .vtk .vtu, VOLMAP-positive) in the folder are used as they are, without TetGen.
-// --decimate F first coarsens surfaces of more than F triangles to F (lib decimate). --keep-going
+// --decimate F first coarsens surfaces of more than F triangles to F (lib decimate; more when F would
+// make a thin part self-intersect: the decimation keeps an embedded surface embedded). --keep-going
 // drops only the domains whose map fails (recorded per domain, the mesh it failed on kept in
 // <group>_failed/) and publishes the others. --keep-unrefined also publishes the mesh before any
 // surface-map split as <group>_unrefined/<name>.mesh (no benchmark group; for growth figures).
@@ -320,7 +321,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-volume", opt.max_volume, "TetGen maximum tet volume (a switch)")
       ->check(volmap_tools::finite_non_negative());
   app.add_option("--decimate", opt.decimate,
-                 "first decimate surfaces of more than this many triangles to this many (quadric edge collapses)")
+                 "first decimate surfaces of more than this many triangles to this many (quadric edge collapses; fewer collapses where that many would make the surface self-intersect)")
       ->check(CLI::Validator(
           [](std::string& v) {  // 0 = never; a closed surface has at least 4 triangles
             std::size_t n = 0;

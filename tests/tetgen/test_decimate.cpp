@@ -1,14 +1,19 @@
 // Surface decimation (volmap::tetgen decimate_surface): the result keeps the topology (closed,
 // oriented, genus 0; independent oracle), reaches the target face count, stays close to the input,
-// leaves small surfaces alone and refuses surfaces that are not closed genus-0 manifolds.
+// leaves small surfaces alone, keeps an embedded thin part embedded and refuses surfaces that are not
+// closed genus-0 manifolds.
 #include <doctest/doctest.h>
 #include <volmap/core/error.hpp>
 #include <volmap/tetgen/decimate.hpp>
+#include <volmap/check/self_intersection.hpp>
 
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/testing/generate.hpp>
 
 #include "surface_oracle.hpp"
+#ifdef VOLMAP_TEST_THIN_SHAPES
+#include "support/shapes.hpp"
+#endif
 
 #include <cmath>
 #include <unordered_map>
@@ -88,3 +93,33 @@ TEST_CASE("decimation refuses surfaces that are not closed genus-0 manifolds") {
     CHECK(e.kind() == ErrorKind::BadInput);
   }
 }
+
+#ifdef VOLMAP_TEST_THIN_SHAPES
+TEST_CASE("decimating a thin part keeps it embedded: a self-intersecting run is redone towards a larger target") {
+  const SurfaceData in = make_builtin_shape("tentacles_coarse", 3);  // 2,016 triangles, thin arms
+  SelfIntersectionOptions check;
+  REQUIRE(find_self_intersections(in.xyz, in.tris, check).clean());
+  DecimateOptions options;
+  options.target_faces = 400;
+  options.keep_embedded = false;  // the plain collapse sequence: its arms collapse into each other
+  const DecimateResult plain = decimate_surface(in, options);
+  CHECK(plain.faces_after <= 400u);
+  CHECK(find_self_intersections(plain.surface.xyz, plain.surface.tris, check).intersecting_pairs > 0);
+
+  options.keep_embedded = true;
+  const DecimateResult r = decimate_surface(in, options);
+  CHECK(r.embedding_retries > 0);
+  CHECK(r.target_used > 400u);
+  CHECK(r.faces_after <= r.target_used);
+  CHECK(r.faces_after < in.num_triangles());
+  CHECK_FALSE(r.reached_target);
+  CHECK(find_self_intersections(r.surface.xyz, r.surface.tris, check).clean());
+  CHECK(volmap_test::closed_genus0_problem(r.surface) == "");
+  // The kept run is the plain run at the target it settled on (the retries are deterministic).
+  options.keep_embedded = false;
+  options.target_faces = r.target_used;
+  const DecimateResult same = decimate_surface(in, options);
+  CHECK(same.surface.tris == r.surface.tris);
+  CHECK(same.surface.xyz == r.surface.xyz);
+}
+#endif

@@ -1,6 +1,9 @@
 // Quadric edge-collapse decimation with OpenMesh (see decimate.hpp). Points are doubles; the
-// output keeps OpenMesh's vertex order after garbage collection (deterministic).
+// output keeps OpenMesh's vertex order after garbage collection (deterministic). A collapse sequence
+// that makes an embedded surface self-intersect is run again from the input towards a target
+// kEmbeddedTargetGrowth times larger, until the result is embedded (exact test, self_intersection.hpp).
 #include <volmap/tetgen/decimate.hpp>
+#include <volmap/check/self_intersection.hpp>
 #include <volmap/core/error.hpp>
 #include <volmap/tetgen/tetrahedralize.hpp>
 
@@ -11,10 +14,14 @@
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
+#include <algorithm>
 #include <vector>
 
 namespace volmap {
 namespace {
+
+// Each retry of an embedding-keeping decimation aims at this many times the last target.
+constexpr double kEmbeddedTargetGrowth = 1.25;
 
 struct DoubleTraits : public OpenMesh::DefaultTraits {
   typedef OpenMesh::Vec3d Point;
@@ -67,19 +74,14 @@ SurfaceData flatten(Mesh& mesh) {
   return s;
 }
 
-}  // namespace
+bool embedded(const SurfaceData& s) {
+  SelfIntersectionOptions options;
+  options.max_reported = 0;
+  return find_self_intersections(s.xyz, s.tris, options).clean();
+}
 
-DecimateResult decimate_surface(const SurfaceData& surface, const DecimateOptions& options) {
-  if (const std::string problem = topology_problem(surface); !problem.empty())
-    throw Error(ErrorKind::BadInput, "", 0, "decimate: " + problem);
-  DecimateResult result;
-  result.faces_before = surface.num_triangles();
-  if (result.faces_before <= options.target_faces) {
-    result.surface = surface;
-    result.faces_after = result.faces_before;
-    result.reached_target = true;
-    return result;
-  }
+// One run of the decimater from `surface` down to `target_faces` triangles.
+SurfaceData collapse_to(const SurfaceData& surface, const DecimateOptions& options, std::size_t target_faces) {
   const MuteOpenMeshErrors mute;
   Mesh mesh = build_mesh(surface);
   mesh.update_face_normals();
@@ -94,12 +96,36 @@ DecimateResult decimate_surface(const SurfaceData& surface, const DecimateOption
   decimater.module(normals).set_max_normal_deviation(options.max_normal_deviation_deg);
   decimater.module(aspect).set_aspect_ratio(static_cast<float>(options.min_aspect_ratio));
   if (!decimater.initialize()) throw Error(ErrorKind::Failed, "", 0, "decimate: OpenMesh decimater did not initialize");
-  decimater.decimate_to_faces(0, options.target_faces);
-  result.surface = flatten(mesh);
-  result.faces_after = result.surface.num_triangles();
-  result.reached_target = result.faces_after <= options.target_faces;
-  if (const std::string problem = topology_problem(result.surface); !problem.empty())
+  decimater.decimate_to_faces(0, target_faces);
+  SurfaceData result = flatten(mesh);
+  if (const std::string problem = topology_problem(result); !problem.empty())
     throw Error(ErrorKind::Failed, "", 0, "decimate: the decimated surface is broken: " + problem);
+  return result;
+}
+
+}  // namespace
+
+DecimateResult decimate_surface(const SurfaceData& surface, const DecimateOptions& options) {
+  if (const std::string problem = topology_problem(surface); !problem.empty())
+    throw Error(ErrorKind::BadInput, "", 0, "decimate: " + problem);
+  DecimateResult result;
+  result.faces_before = surface.num_triangles();
+  result.target_used = options.target_faces;
+  const bool keep_embedded = options.keep_embedded && result.faces_before > options.target_faces && embedded(surface);
+  for (std::size_t target = options.target_faces; target < result.faces_before;
+       target = std::max(target + 1, static_cast<std::size_t>(kEmbeddedTargetGrowth * double(target)))) {
+    result.surface = collapse_to(surface, options, target);
+    result.target_used = target;
+    if (!keep_embedded || embedded(result.surface)) {
+      result.faces_after = result.surface.num_triangles();
+      result.reached_target = result.faces_after <= options.target_faces;
+      return result;
+    }
+    ++result.embedding_retries;
+  }
+  result.surface = surface;  // at most target_faces triangles already, or no decimation stays embedded
+  result.faces_after = result.faces_before;
+  result.reached_target = result.faces_after <= options.target_faces;
   return result;
 }
 
