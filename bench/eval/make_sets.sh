@@ -8,7 +8,8 @@
 #   <out>  where the sets go, e.g. /work/eval/sets (never inside the repo: the data's licences forbid it)
 #   sets   any of: thin thin_coarse coarse g1sphere tetmeshes maps surfaces (default: all, in that order)
 #   env    VOLMAP_DATA (default /work/shared/data), DECIMATE (default 22000 triangles),
-#          STEP_TIMEOUT (seconds per surface in volmap-dataset, default 3600), MESH_PER_DOMAIN (default 1)
+#          STEP_TIMEOUT (seconds per surface in volmap-dataset, default 3600), MESH_PER_DOMAIN (default 1),
+#          SUBDIVISIONS (volmap-shapes --subdivisions for thin and thin_coarse, 1-5, default the tool's 3)
 #
 # The sets (each in <out>/<set>/, with logs/<group>_<name>.json = volmap-dataset's JSON per input):
 #   thin        the 16 thin-feature shapes of `volmap-shapes --thin` (group G1), TetGen p q1.414 Y
@@ -79,7 +80,7 @@ make_thin() {  # <set> [--coarse]
   local set_dir=$OUT/$1
   shift
   mkdir -p "$set_dir"
-  "$BIN/volmap-shapes" "$set_dir/surfaces" --thin --format off > /dev/null
+  "$BIN/volmap-shapes" "$set_dir/surfaces" --thin --format off ${SUBDIVISIONS:+--subdivisions "$SUBDIVISIONS"} > /dev/null
   for s in "$set_dir"/surfaces/*.off; do dataset_one "$set_dir" G1 "$s" "$@"; done
 }
 

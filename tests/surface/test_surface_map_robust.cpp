@@ -8,6 +8,8 @@
 //  - An uneven sphere: a cube grid graded towards one corner (x -> 100 (x/n)^4). Its projected cube
 //    map is positive about the sphere's centre but 6 slivers are inverted about the centroid of the
 //    image points, VOLMAP's kernel; `volmap-surface-map sphere` used to accept it.
+//  - A single tet onto the sphere: no split (the regular tetrahedron's map), where the cube map needs
+//    8 corners.
 //  - G1's bird, hand and mouse sphere maps (the cases): the map tool and the check tool
 //    agree, with and without --domain sphere. Long: all 20 G1 meshes.
 #include <doctest/doctest.h>
@@ -156,4 +158,20 @@ TEST_SUITE("long") {
                              "pig", "ramses", "sphinx"})
       check_g1_sphere_agreement(name);
   }
+}
+
+TEST_CASE("a single tet maps onto the sphere with no split: the regular tetrahedron's map needs no corner more") {
+  TetMeshData one;
+  one.xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  one.tets = {0, 1, 2, 3};
+  if (orient3d(&one.xyz[0], &one.xyz[3], &one.xyz[6], &one.xyz[9]) < 0) std::swap(one.tets[0], one.tets[1]);
+  one.vertex_labels.assign(4, 0);
+  one.tet_labels.assign(1, 0);
+  const SurfaceMapResult s = map_surface_to_sphere(one, {50, 50, 50}, 50);
+  require_valid_sphere(s);
+  CHECK(s.added_vertices == 0);
+  CHECK(s.mesh.num_tets() == 1);
+  CHECK(s.attempt.find("regular tetrahedron") != std::string::npos);
+  // The cube map alone must split: 8 corners on a 4-vertex boundary.
+  CHECK(map_surface_to_domain(one, builtin_domain("cube")).added_vertices >= 4);
 }

@@ -14,6 +14,11 @@
 //    of them, so the cones stay positive about c, while the points crowded around q's direction
 //    spread out and k moves towards c.
 // Every accepted step is verified exactly; the result is re-checked with check_surface_map.
+// When balancing stalls (no fewer bad points in kStallSweeps rounds), the triangles still bad are
+// large ones whose planes pass near c: the longest edge of each is split (in the source tets and at
+// the midpoint of its image on the flat star-shaped map) and the map is projected and balanced
+// again. The star-shaped maps tried: the cube map, then, when it splits or does not balance, the map
+// onto a regular tetrahedron (4 nodes and 6 arcs: a coarse surface needs the fewest splits).
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map.hpp>
@@ -24,6 +29,8 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <cstdio>
+#include <optional>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -39,6 +46,11 @@ using namespace surface_detail;
 // relaxation sweep), and how often the image is re-centred.
 constexpr int kMaxSweeps = 2000;
 constexpr int kSweepsPerRecentre = 5;
+// Balancing has stalled when the number of points of bad triangles has not reached a new minimum
+// for this many rounds; map_surface_to_sphere then splits the stuck triangles and balances again,
+// within kMaxSweepsRefining rounds in all.
+constexpr int kStallSweeps = 400;
+constexpr int kMaxSweepsRefining = 2 * kMaxSweeps;
 
 // max t subject to s[j] + a[j]*x + b[j]*y >= t for every j and |x|, |y| <= box: the optimum of this
 // 3-variable LP has three tight constraints, found by enumerating triples (m is a vertex degree's
@@ -100,6 +112,8 @@ class SphereImage {
   void recentre();
   // The points of the triangles that are not positive about k.
   std::vector<VertexHandle> points_of_bad_triangles(const double* k) const;
+  // The triangles that are not positive about k, in the map's vertex ids.
+  std::vector<std::array<std::uint32_t, 3>> bad_triangles(const double* k) const;
   // Moves v, within half its shortest edge, to where the smallest distance of its cones' planes
   // (through c and through k) is largest; kept only when every cone around it stays positive about
   // c (exact) and that smallest distance grew.
@@ -259,6 +273,16 @@ std::vector<VertexHandle> SphereImage::points_of_bad_triangles(const double* k) 
   return out;
 }
 
+std::vector<std::array<std::uint32_t, 3>> SphereImage::bad_triangles(const double* k) const {
+  std::vector<std::array<std::uint32_t, 3>> out;
+  for (auto f : s_.mesh.faces())
+    if (!positive(f, k)) {
+      const auto t = face_vertices(s_.mesh, f);
+      out.push_back({s_.tet_vertex_of(t[0]), s_.tet_vertex_of(t[1]), s_.tet_vertex_of(t[2])});
+    }
+  return out;
+}
+
 // The cone planes around v: for each face (v, x, y) and q in {c, k}, the plane through q, x, y with
 // its unit normal N = (x - q) x (y - q) / |.|; v's cone is positive about q iff (v - q).N > 0.
 template <class F>
@@ -324,20 +348,34 @@ void SphereImage::fatten(VertexHandle v, const double* k) {
 
 }  // namespace
 
-SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& centre, double radius) {
+namespace {
+
+// Projects and balances `in`; returns the sphere map, or nothing with `stuck` holding the triangles
+// still inverted about the centroid when balancing stalls (kStallSweeps) or runs out of rounds.
+// `sweeps` (in: at most this many rounds, out: the rounds used).
+std::optional<SurfaceMapResult> balanced_projection(const SurfaceMapResult& in, const Point3& centre, double radius,
+                                                    std::vector<std::array<std::uint32_t, 3>>& stuck, int& sweeps) {
+  const int budget = sweeps;
   SurfaceMapResult out = in;
   SphereImage image(out.mesh, out.map, centre, radius);
   image.project();
   image.repair_about_centre();
   if (!image.valid_about(centre.data()))
     fail("the projected sphere map has cones that are not positive about the centre");
-  for (int sweep = 0;; ++sweep) {
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (int sweep = 0, last_new_minimum = 0;; ++sweep) {
+    sweeps = sweep;
     const Point3 k = image.centroid();
     const std::vector<VertexHandle> bad = image.points_of_bad_triangles(k.data());
     if (bad.empty()) break;
-    if (sweep >= kMaxSweeps)
-      fail("the sphere map stays inverted about the centroid of its points after " + std::to_string(kMaxSweeps) +
-           " balancing rounds");
+    if (bad.size() < fewest) {
+      fewest = bad.size();
+      last_new_minimum = sweep;
+    }
+    if (sweep >= budget || sweep - last_new_minimum >= kStallSweeps) {
+      stuck = image.bad_triangles(k.data());
+      return std::nullopt;
+    }
     for (auto v : bad) image.fatten(v, k.data());
     if (sweep % kSweepsPerRecentre == 0) image.recentre();
     image.relax();
@@ -351,17 +389,115 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& cen
   return out;
 }
 
+// `in` with the longest edge (on the star-shaped image) of every `stuck` triangle split at its
+// midpoint, in the source and in the image (the midpoint of a segment in a flat face stays in it).
+// New vertices are appended in split order; every new tet is checked exactly (SourceTetMesh).
+SurfaceMapResult split_longest_edges(const SurfaceMapResult& in, const std::vector<std::array<std::uint32_t, 3>>& stuck) {
+  std::vector<std::int32_t> slot(in.mesh.num_vertices(), -1);
+  for (std::size_t i = 0; i < in.map.size(); ++i) slot[in.map.vids[i]] = static_cast<std::int32_t>(i);
+  auto image = [&](std::uint32_t v) { return &in.map.xyz[3 * static_cast<std::size_t>(slot[v])]; };
+  auto length2 = [&](std::uint32_t a, std::uint32_t b) {
+    double l = 0;
+    for (int k = 0; k < 3; ++k) l += (image(a)[k] - image(b)[k]) * (image(a)[k] - image(b)[k]);
+    return l;
+  };
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  for (const auto& t : stuck) {
+    int longest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (length2(t[i], t[(i + 1) % 3]) > length2(t[longest], t[(longest + 1) % 3])) longest = i;
+    edges.push_back({std::min(t[longest], t[(longest + 1) % 3]), std::max(t[longest], t[(longest + 1) % 3])});
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+
+  SurfaceMapResult out = in;
+  std::vector<EdgeSplit> splits;
+  const auto first_new = static_cast<std::uint32_t>(in.mesh.num_vertices());
+  for (const auto& e : edges) {
+    EdgeSplit sp{e[0], e[1], first_new + static_cast<std::uint32_t>(splits.size()), {}};
+    for (int k = 0; k < 3; ++k) {
+      sp.p[k] = 0.5 * (in.mesh.xyz[3 * e[0] + k] + in.mesh.xyz[3 * e[1] + k]);
+      out.map.xyz.push_back(0.5 * (image(e[0])[k] + image(e[1])[k]));
+    }
+    out.map.vids.push_back(sp.m);
+    splits.push_back(sp);
+  }
+  if (!out.map.source_lines.empty()) out.map.source_lines.resize(out.map.size(), 0);
+  SourceTetMesh source(in.mesh);
+  out.mesh = source.refine(splits).mesh;
+  out.added_vertices += splits.size();
+  return out;
+}
+
+// Projects `star_shaped` and balances it; when balancing stalls, splits the stuck triangles' longest
+// edges and balances again, within kMaxSweepsRefining rounds in all.
+SurfaceMapResult project_refining(SurfaceMapResult star_shaped, const Point3& centre, double radius) {
+  std::vector<std::array<std::uint32_t, 3>> stuck;
+  std::size_t splits = 0;
+  for (int left = kMaxSweepsRefining;;) {
+    int sweeps = left;
+    if (auto r = balanced_projection(star_shaped, centre, radius, stuck, sweeps)) {
+      if (splits) r->attempt += ", " + std::to_string(splits) + " balancing splits";
+      return *std::move(r);
+    }
+    left -= std::max(sweeps, 1);
+    if (left <= 0)
+      fail("the sphere map stays inverted about the centroid of its points (" + std::to_string(stuck.size()) +
+           " triangles) after " + std::to_string(kMaxSweepsRefining) + " rounds of balancing and " +
+           std::to_string(splits) + " splits");
+    const std::size_t before = star_shaped.added_vertices;
+    star_shaped = split_longest_edges(star_shaped, stuck);
+    splits += star_shaped.added_vertices - before;
+  }
+}
+
+}  // namespace
+
+SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& centre, double radius) {
+  std::vector<std::array<std::uint32_t, 3>> stuck;
+  int sweeps = kMaxSweeps;
+  if (auto r = balanced_projection(in, centre, radius, stuck, sweeps)) return *std::move(r);
+  fail("the sphere map stays inverted about the centroid of its points (" + std::to_string(stuck.size()) +
+       " triangles) when its balancing stalls");
+}
+
+namespace {
+
+// The regular tetrahedron on the alternate corners 0, 2, 5, 7 of the cube [0,100]³ (probes: the
+// same corners of the input's bounding box), centred on the cube's centre like the cube itself: the
+// star-shaped map with the fewest nodes and arcs, so the fewest splits on a coarse surface.
+const Domain& sphere_tetrahedron() {
+  static const Domain d = parse_custom_domain(
+      "n 0\nn 2\nn 5\nn 7\n"
+      "nm 0 0 0\nnm 100 0 100\nnm 0 100 100\nnm 100 100 0\n"
+      "a 0 1\na 0 2\na 0 3\na 1 2\na 1 3\na 2 3\n",
+      "the sphere map's regular tetrahedron");
+  return d;
+}
+
+}  // namespace
+
 SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& centre, double radius,
                                        const SurfaceMapOptions& options) {
   const Domain cube = builtin_domain("cube");
   std::string lean_failure;
   if (!options.reference_chord_splits) {
-    try {
-      return project_to_sphere(map_surface_to_domain(mesh, cube, options), centre, radius);
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::Failed) throw;
-      lean_failure = e.reason();
-    }
+    std::optional<SurfaceMapResult> best;
+    auto project = [&](const Domain& domain, const char* label) {
+      try {
+        SurfaceMapResult r = project_refining(map_surface_to_domain(mesh, domain, options), centre, radius);
+        r.attempt = std::string(label) + ", " + r.attempt;
+        if (!best || r.mesh.num_tets() < best->mesh.num_tets()) best = std::move(r);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Failed) throw;
+        lean_failure += (lean_failure.empty() ? "" : "; ") + std::string(label) + ": " + e.reason();
+      }
+    };
+    project(cube, "cube map");
+    if (best && best->added_vertices == 0) return *std::move(best);
+    project(sphere_tetrahedron(), "regular tetrahedron map");
+    if (best) return *std::move(best);
   }
   SurfaceMapOptions reference = options;
   reference.reference_chord_splits = true;
@@ -369,7 +505,7 @@ SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& ce
     return project_to_sphere(map_surface_to_domain(mesh, cube, reference), centre, radius);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::Failed || lean_failure.empty()) throw;
-    throw Error(ErrorKind::Failed, "", 0, lean_failure + "; with the reference's chord splits: " + e.reason());
+    throw Error(ErrorKind::Failed, "", 0, lean_failure + "; cube map with the reference's chord splits: " + e.reason());
   }
 }
 

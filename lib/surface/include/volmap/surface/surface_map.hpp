@@ -104,11 +104,14 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
 // check_surface_map (sphere options). Throws Error(Failed) when that does not converge.
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Point3& centre, double radius);
 
-// The sphere map of `volmap-surface-map sphere`: the cube map projected (project_to_sphere). A cube
-// map by the lean chord rule can leave too few points for the balancing (a coarse surface's few
-// vertices crowd where the cube's corners pull them); then the cube map by the reference's rule,
-// whose extra arc-side vertices spread the image, is projected instead. Throws Error(Failed) with
-// both reasons when neither balances.
+// The sphere map of `volmap-surface-map sphere`: a star-shaped map projected and balanced
+// (project_to_sphere). First the cube map; when it splits edges or does not balance, also the map
+// onto the regular tetrahedron on the cube's alternate corners (fewer nodes and arcs, so fewer
+// splits on coarse surfaces); the one whose mesh has fewer tets is kept (the cube's on a tie). When
+// balancing stalls, the longest edges of the triangles still inverted about the centroid are split
+// and the map balanced again (within twice the balancing rounds of one projection). Only when neither
+// balances is the cube map by the reference's chord rule projected. Throws Error(Failed) with every
+// reason when nothing balances.
 SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& centre, double radius,
                                        const SurfaceMapOptions& options = {});
 
