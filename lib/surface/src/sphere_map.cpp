@@ -17,8 +17,9 @@
 // When balancing stalls (no fewer bad points in kStallSweeps rounds), the triangles still bad are
 // large ones whose planes pass near c: the longest edge of each is split (in the source tets and at
 // the midpoint of its image on the flat star-shaped map) and the map is projected and balanced
-// again. The star-shaped maps tried: the cube map, then, when it splits or does not balance, the map
-// onto a regular tetrahedron (4 nodes and 6 arcs: a coarse surface needs the fewest splits).
+// again. The star-shaped maps tried: the cube map, then, when it adds more than 1 % to the tets or
+// does not balance, the map onto a regular tetrahedron (4 nodes and 6 arcs: a coarse surface needs
+// the fewest splits).
 #include <volmap/core/error.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map.hpp>
@@ -28,10 +29,9 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
-#include <cstdio>
-#include <optional>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -351,10 +351,12 @@ void SphereImage::fatten(VertexHandle v, const double* k) {
 namespace {
 
 // Projects and balances `in`; returns the sphere map, or nothing with `stuck` holding the triangles
-// still inverted about the centroid when balancing stalls (kStallSweeps) or runs out of rounds.
-// `sweeps` (in: at most this many rounds, out: the rounds used).
+// still inverted about the centroid when balancing stalls (no new minimum of bad points in
+// `stall_sweeps` rounds) or runs out of rounds. `sweeps`: in, at most this many rounds; out, the
+// rounds used.
 std::optional<SurfaceMapResult> balanced_projection(const SurfaceMapResult& in, const Point3& centre, double radius,
-                                                    std::vector<std::array<std::uint32_t, 3>>& stuck, int& sweeps) {
+                                                    std::vector<std::array<std::uint32_t, 3>>& stuck, int& sweeps,
+                                                    int stall_sweeps) {
   const int budget = sweeps;
   SurfaceMapResult out = in;
   SphereImage image(out.mesh, out.map, centre, radius);
@@ -372,7 +374,7 @@ std::optional<SurfaceMapResult> balanced_projection(const SurfaceMapResult& in, 
       fewest = bad.size();
       last_new_minimum = sweep;
     }
-    if (sweep >= budget || sweep - last_new_minimum >= kStallSweeps) {
+    if (sweep >= budget || sweep - last_new_minimum >= stall_sweeps) {
       stuck = image.bad_triangles(k.data());
       return std::nullopt;
     }
@@ -437,7 +439,7 @@ SurfaceMapResult project_refining(SurfaceMapResult star_shaped, const Point3& ce
   std::size_t splits = 0;
   for (int left = kMaxSweepsRefining;;) {
     int sweeps = left;
-    if (auto r = balanced_projection(star_shaped, centre, radius, stuck, sweeps)) {
+    if (auto r = balanced_projection(star_shaped, centre, radius, stuck, sweeps, kStallSweeps)) {
       if (splits) r->attempt += ", " + std::to_string(splits) + " balancing splits";
       return *std::move(r);
     }
@@ -457,9 +459,9 @@ SurfaceMapResult project_refining(SurfaceMapResult star_shaped, const Point3& ce
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& in, const Point3& centre, double radius) {
   std::vector<std::array<std::uint32_t, 3>> stuck;
   int sweeps = kMaxSweeps;
-  if (auto r = balanced_projection(in, centre, radius, stuck, sweeps)) return *std::move(r);
+  if (auto r = balanced_projection(in, centre, radius, stuck, sweeps, kMaxSweeps)) return *std::move(r);
   fail("the sphere map stays inverted about the centroid of its points (" + std::to_string(stuck.size()) +
-       " triangles) when its balancing stalls");
+       " triangles) after " + std::to_string(kMaxSweeps) + " balancing rounds");
 }
 
 namespace {
@@ -495,7 +497,8 @@ SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& ce
       }
     };
     project(cube, "cube map");
-    if (best && best->added_vertices == 0) return *std::move(best);
+    if (best && double(best->mesh.num_tets()) <= (1 + kPlacementSearchGrowth) * double(mesh.num_tets()))
+      return *std::move(best);
     project(sphere_tetrahedron(), "regular tetrahedron map");
     if (best) return *std::move(best);
   }

@@ -52,11 +52,6 @@ void require_sphere_topology(const BoundarySurface& b) {
     bad_input("the boundary surface is not a genus-0 sphere (Euler characteristic " + std::to_string(chi) + ")");
 }
 
-// Steps 6 and 7 run when the splits add more than this fraction of the input's tets: below it the
-// growth does not matter and more searches would multiply the time (armadillo → octa: 72 of 72,923
-// tets). Step 7 stops at the first map within it.
-constexpr double kPlacementSearchGrowth = 0.01;
-
 struct Attempt {
   const std::vector<int>* order;
   int subdivisions;  // rounds of splitting every boundary edge first

@@ -75,6 +75,11 @@ enum class ChordSplitRule {
   AfterEveryArc,     // the reference's: every chord, after each arc
 };
 
+// Steps 6 and 7 run when the splits add more than this fraction of the input's tets: below it the
+// growth does not matter and more searches would multiply the time (armadillo → octa: 72 of 72,923
+// tets). Step 7 stops at the first map within it. The sphere map keeps its cube map within it too.
+inline constexpr double kPlacementSearchGrowth = 0.01;
+
 // Step 7's pulls (with_pulled_probes), tried in this order: the nearer the extremities, the more
 // the map looks like the reference's.
 inline constexpr double kProbePulls[] = {0.9, 0.75, 0.6, 0.5, 0.4, 0.25, 0.1};
@@ -105,9 +110,11 @@ SurfaceMapResult map_surface_to_domain(const TetMeshData& mesh, const Domain& do
 SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Point3& centre, double radius);
 
 // The sphere map of `volmap-surface-map sphere`: a star-shaped map projected and balanced
-// (project_to_sphere). First the cube map; when it splits edges or does not balance, also the map
-// onto the regular tetrahedron on the cube's alternate corners (fewer nodes and arcs, so fewer
-// splits on coarse surfaces); the one whose mesh has fewer tets is kept (the cube's on a tie). When
+// (project_to_sphere). First the cube map; when it adds more than kPlacementSearchGrowth to the tets
+// or does not balance, also the map onto the regular tetrahedron on the cube's alternate corners
+// (fewer nodes and arcs, so fewer splits on coarse surfaces); the one whose mesh has fewer tets is
+// kept (the cube's on a tie). The cube's image is the rounder one, so it is kept where the
+// tetrahedron could only save a few tets. When
 // balancing stalls, the longest edges of the triangles still inverted about the centroid are split
 // and the map balanced again (within twice the balancing rounds of one projection). Only when neither
 // balances is the cube map by the reference's chord rule projected. Throws Error(Failed) with every
