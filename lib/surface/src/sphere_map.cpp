@@ -497,8 +497,7 @@ SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& ce
       }
     };
     project(cube, "cube map");
-    if (best && double(best->mesh.num_tets()) <= (1 + kPlacementSearchGrowth) * double(mesh.num_tets()))
-      return *std::move(best);
+    if (best && adds_at_most(*best, mesh.num_tets(), kPlacementSearchGrowth)) return *std::move(best);
     project(sphere_tetrahedron(), "regular tetrahedron map");
     if (best) return *std::move(best);
   }

@@ -174,10 +174,6 @@ void keep_if_fewer_tets(SourceTetMesh& source, const BoundarySurface& boundary, 
   best = std::move(*other);
 }
 
-bool adds_at_most(const SurfaceMapResult& map, std::size_t input_tets, double growth) {
-  return double(map.mesh.num_tets()) <= (1 + growth) * double(input_tets);
-}
-
 // Step 6: the search again with the probes rotated; `best` becomes the map with the fewest tets
 // (the unrotated one on a tie).
 void keep_fewest_tets_over_rotations(SourceTetMesh& source, const BoundarySurface& boundary, const Domain& domain,

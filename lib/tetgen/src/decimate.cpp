@@ -124,6 +124,7 @@ DecimateResult decimate_surface(const SurfaceData& surface, const DecimateOption
     ++result.embedding_retries;
   }
   result.surface = surface;  // at most target_faces triangles already, or no decimation stays embedded
+  result.target_used = result.faces_before;
   result.faces_after = result.faces_before;
   result.reached_target = result.faces_after <= options.target_faces;
   return result;

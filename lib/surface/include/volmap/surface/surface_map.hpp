@@ -69,6 +69,11 @@ struct SurfaceMapResult {
   std::vector<std::string> failed_attempts;  // "<attempt>: <reason>" for every earlier attempt
 };
 
+// Whether `map`'s mesh has at most (1 + growth) times `input_tets` tets.
+inline bool adds_at_most(const SurfaceMapResult& map, std::size_t input_tets, double growth) {
+  return double(map.mesh.num_tets()) <= (1 + growth) * double(input_tets);
+}
+
 // Which chords (boundary edges off every arc joining two graph vertices) are split (step 3 above).
 enum class ChordSplitRule {
   OnlyAlongOneLine,  // lean: after the last arc, the chords whose ends lie on one line of the domain
@@ -114,11 +119,10 @@ SurfaceMapResult project_to_sphere(const SurfaceMapResult& star_shaped, const Po
 // or does not balance, also the map onto the regular tetrahedron on the cube's alternate corners
 // (fewer nodes and arcs, so fewer splits on coarse surfaces); the one whose mesh has fewer tets is
 // kept (the cube's on a tie). The cube's image is the rounder one, so it is kept where the
-// tetrahedron could only save a few tets. When
-// balancing stalls, the longest edges of the triangles still inverted about the centroid are split
-// and the map balanced again (within twice the balancing rounds of one projection). Only when neither
-// balances is the cube map by the reference's chord rule projected. Throws Error(Failed) with every
-// reason when nothing balances.
+// tetrahedron could only save a few tets. When balancing stalls, the longest edges of the
+// triangles still inverted about the centroid are split and the map balanced again (within twice
+// the balancing rounds of one projection). Only when neither balances is the cube map by the
+// reference's chord rule projected. Throws Error(Failed) with every reason when nothing balances.
 SurfaceMapResult map_surface_to_sphere(const TetMeshData& mesh, const Point3& centre, double radius,
                                        const SurfaceMapOptions& options = {});
 

@@ -28,7 +28,8 @@ struct DecimateResult {
   SurfaceData surface;
   std::size_t faces_before = 0, faces_after = 0;
   bool reached_target = false;  // false when every remaining collapse was refused by a constraint
-  std::size_t target_used = 0;  // the target of the run returned (> target_faces after retries)
+  std::size_t target_used = 0;  // the target of the run returned (> target_faces after retries;
+                                // faces_before when the input is returned)
   int embedding_retries = 0;    // runs discarded because they self-intersected
 };
 
