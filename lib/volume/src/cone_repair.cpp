@@ -135,6 +135,16 @@ class ConeRepairer {
   std::uint32_t region_stamp_ = 0, vstamp_ = 0;
   long long net_added_ = 0;
   std::vector<std::uint32_t> region_;
+  // Per region_ entry: its vertices, its face neighbours and its open faces (bit i set iff face i
+  // is on ∂R), kept by add_to_region and truncate_region so that region_boundary reads the mesh
+  // nowhere (R's tets lie scattered in it).
+  struct RegionTet {
+    std::array<std::uint32_t, 4> v;
+    std::array<HalfFaceId, 4> opposite;
+    std::uint8_t open;
+  };
+  std::vector<RegionTet> region_tets_;
+  std::vector<std::uint32_t> region_pos_;  // per tet slot: its index in region_ (while in R)
   std::vector<RegionFace> faces_;
   bool aimed_ = false;  // grow_region with a fixed target point
   // The apex of the patch being built, before it is committed.
@@ -144,6 +154,7 @@ class ConeRepairer {
   // ---- access -------------------------------------------------------------------------------
   void sync_slot_arrays() {
     in_region_.resize(mesh_.num_tet_slots(), 0);
+    region_pos_.resize(mesh_.num_tet_slots(), 0);
     vmark_.resize(mesh_.num_vertex_slots(), 0);
   }
   Tri face(std::uint32_t t, int i) const {
@@ -215,11 +226,39 @@ class ConeRepairer {
   }
 
   // ---- the region R -------------------------------------------------------------------------
+  bool in_region(HalfFaceId o) const { return o.is_valid() && in_region_[o.tet().idx()] == region_stamp_; }
   bool add_to_region(std::uint32_t t) {
     if (in_region_[t] == region_stamp_) return false;
+    RegionTet r;
+    r.open = 0;
+    for (int i = 0; i < 4; ++i) {
+      r.v[i] = tet_vertex(t, i);
+      const HalfFaceId o = r.opposite[i] = mesh_.half_face_opposite(HalfFaceId(TetId(t), i));
+      if (in_region(o))
+        region_tets_[region_pos_[o.tet().idx()]].open &= std::uint8_t(~(1u << o.local()));
+      else
+        r.open |= std::uint8_t(1u << i);
+    }
     in_region_[t] = region_stamp_;
+    region_pos_[t] = std::uint32_t(region_.size());
     region_.push_back(t);
+    region_tets_.push_back(r);
     return true;
+  }
+  // R back to its first `mark` tets (the last added leave first).
+  void truncate_region(std::size_t mark) {
+    while (region_.size() > mark) {
+      in_region_[region_.back()] = 0;
+      region_.pop_back();
+      for (const HalfFaceId o : region_tets_.back().opposite)
+        if (in_region(o)) region_tets_[region_pos_[o.tet().idx()]].open |= std::uint8_t(1u << o.local());
+      region_tets_.pop_back();
+    }
+  }
+  void clear_region() {
+    ++region_stamp_;
+    region_.clear();
+    region_tets_.clear();
   }
   // Adds t; when t is non-positive in the target, also the stars of its vertices (clusters merge;
   // not in aimed growth, where the stars of a far-off vertex would bring in ∂M faces aim cannot see).
@@ -236,13 +275,18 @@ class ConeRepairer {
     return added;
   }
 
+  // ∂R in faces_: the open faces of the tets of R, in the order of region_ and of the local faces.
   void region_boundary() {
     faces_.clear();
-    for (std::uint32_t t : region_)
+    for (std::size_t k = 0; k < region_.size(); ++k) {
+      const RegionTet& r = region_tets_[k];
+      if (r.open == 0) continue;
       for (int i = 0; i < 4; ++i) {
-        const HalfFaceId o = mesh_.half_face_opposite(HalfFaceId(TetId(t), i));
-        if (!o.is_valid() || in_region_[o.tet().idx()] != region_stamp_) faces_.push_back({face(t, i), o, t});
+        if (!(r.open & (1u << i))) continue;
+        const std::uint8_t* f = kTetFace[i];
+        faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], region_[k]});
       }
+    }
   }
 
   // Checks that ∂R (faces_) is a closed 2-manifold sphere. Fills offending vertices/edges, the
@@ -438,7 +482,7 @@ class ConeRepairer {
       const double len = inward_face_normal(a, b, c, 1.0, nn);
       double d = -std::numeric_limits<double>::max();
       if (len > 0) d = (nn[0] * (pt[0] - a[0]) + nn[1] * (pt[1] - a[1]) + nn[2] * (pt[2] - a[2])) / len;
-      if (fp_.orient3d(a, b, c, pt) > 0 && d <= 0) d = std::numeric_limits<double>::min();
+      if (d <= 0 && fp_.orient3d(a, b, c, pt) > 0) d = std::numeric_limits<double>::min();  // exact sign wins
       if (d <= 0) candidates.push_back({d, faces_[f].outside.tet().idx()});
       if (d < worst) {
         worst = d;
@@ -460,8 +504,7 @@ class ConeRepairer {
       const std::size_t mark = region_.size();
       add_with_merge(t);
       const double pr = region_progress(tri_t, tri_s);
-      for (std::size_t r = mark; r < region_.size(); ++r) in_region_[region_[r]] = 0;
-      region_.resize(mark);
+      truncate_region(mark);
       if (pr > best) {
         best = pr;
         grow = t;
@@ -504,8 +547,7 @@ class ConeRepairer {
   // accepted when aim sees all of ∂R (q = aim) and the source LP has a verified strict point.
   bool grow_region(const std::vector<std::uint32_t>& cluster, double* p, double* q, int lookahead, bool count_failure,
                    const double* aim = nullptr) {
-    ++region_stamp_;
-    region_.clear();
+    clear_region();
     aimed_ = aim != nullptr;
     for (std::uint32_t t : cluster) add_with_merge(t);
     std::vector<double> tri_t, tri_s;
@@ -776,8 +818,7 @@ class ConeRepairer {
           }
         }
       }
-      for (std::size_t r = mark; r < region_.size(); ++r) in_region_[region_[r]] = 0;
-      region_.resize(mark);
+      truncate_region(mark);
       region_boundary();
     }
     return false;
