@@ -825,6 +825,13 @@ class ConeRepairer {
   }
 
   // ---- the patch ----------------------------------------------------------------------------
+  // x lies outside the axis-aligned bounding box of a, b, c, d (exact: comparisons only).
+  static bool outside_box(const double* x, const double* a, const double* b, const double* c, const double* d) {
+    for (int k = 0; k < 3; ++k)
+      if (x[k] < std::min(std::min(a[k], b[k]), std::min(c[k], d[k])) || x[k] > std::max(std::max(a[k], b[k]), std::max(c[k], d[k])))
+        return true;
+    return false;
+  }
   // Splits the local tets whose closure contains u's source position (1→4, 2→6 or edge n→2n) and
   // gives u a target position making every new tet exactly positive.
   bool insert_vertex(std::uint32_t u, std::vector<LocalTet>& local) {
@@ -837,6 +844,10 @@ class ConeRepairer {
     for (std::size_t k = 0; k < local.size(); ++k) {
       if (local[k].dead) continue;
       const auto& tv = local[k].v;
+      // Every local tet is strictly positive (a cone over ∂R from a strict kernel point, or a split
+      // of one at a point strictly inside a face's side), so x outside its bounding box is outside
+      // it: some exact sign would be negative.
+      if (outside_box(x, S(tv[0]), S(tv[1]), S(tv[2]), S(tv[3]))) continue;
       Hit h{k, {0, 0, 0, 0}};
       int zeros = 0;
       bool outside = false;
