@@ -57,6 +57,8 @@ struct RegionFace {
   Tri v;
   HalfFaceId outside;
   std::uint32_t inner_tet;
+  std::uint32_t inner_pos;  // index of inner_tet in the region's list
+  int local;                // the face is face `local` of inner_tet
 };
 
 // A tet of a patch before it is committed: vertices (kPendingApex for a new apex) and the region tet
@@ -142,6 +144,7 @@ class ConeRepairer {
     std::array<std::uint32_t, 4> v;
     std::array<HalfFaceId, 4> opposite;
     std::uint8_t open;
+    std::uint8_t aim_sees;  // aimed growth: bit i set once face i was found to see the aim strictly
   };
   std::vector<RegionTet> region_tets_;
   std::vector<std::uint32_t> region_pos_;  // per tet slot: its index in region_ (while in R)
@@ -231,6 +234,7 @@ class ConeRepairer {
     if (in_region_[t] == region_stamp_) return false;
     RegionTet r;
     r.open = 0;
+    r.aim_sees = 0;
     for (int i = 0; i < 4; ++i) {
       r.v[i] = tet_vertex(t, i);
       const HalfFaceId o = r.opposite[i] = mesh_.half_face_opposite(HalfFaceId(TetId(t), i));
@@ -284,7 +288,7 @@ class ConeRepairer {
       for (int i = 0; i < 4; ++i) {
         if (!(r.open & (1u << i))) continue;
         const std::uint8_t* f = kTetFace[i];
-        faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], region_[k]});
+        faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], region_[k], std::uint32_t(k), i});
       }
     }
   }
@@ -515,10 +519,18 @@ class ConeRepairer {
 
   // Aimed growth step: adds the tets behind every ∂R face that aim does not see strictly. Returns
   // false when such a face is on ∂M (aim cannot be reached); *added counts the tets added.
+  // A face keeps its answer while it bounds R (aim, R's tets and their target positions are fixed
+  // during one growth), so each face is tested once.
   bool grow_towards_aim(const double* aim, std::size_t* added) {
     *added = 0;
     for (const auto& f : faces_) {
-      if (fp_.orient3d(T(f.v[0]), T(f.v[1]), T(f.v[2]), aim) > 0) continue;
+      std::uint8_t& sees = region_tets_[f.inner_pos].aim_sees;
+      const auto bit = std::uint8_t(1u << f.local);
+      if (sees & bit) continue;
+      if (fp_.orient3d(T(f.v[0]), T(f.v[1]), T(f.v[2]), aim) > 0) {
+        sees |= bit;
+        continue;
+      }
       if (!f.outside.is_valid()) return false;
       *added += add_to_region(f.outside.tet().idx());
     }
