@@ -137,15 +137,15 @@ class ConeRepairer {
   std::uint32_t region_stamp_ = 0, vstamp_ = 0;
   long long net_added_ = 0;
   std::vector<std::uint32_t> region_;
-  // Per region_ entry: its vertices, its face neighbours and its open faces (bit i set iff face i
-  // is on ∂R), kept by add_to_region and truncate_region so that region_boundary reads the mesh
-  // nowhere (R's tets lie scattered in it).
+  // Per region_ entry: its open faces (bit i set iff face i is on ∂R; a byte array of their own,
+  // scanned at every growth step), its vertices and face neighbours, kept by add_to_region and
+  // truncate_region so that region_boundary reads the mesh nowhere (R's tets lie scattered in it).
   struct RegionTet {
     std::array<std::uint32_t, 4> v;
     std::array<HalfFaceId, 4> opposite;
-    std::uint8_t open;
     std::uint8_t aim_sees;  // aimed growth: bit i set once face i was found to see the aim strictly
   };
+  std::vector<std::uint8_t> open_faces_;
   std::vector<RegionTet> region_tets_;
   std::vector<std::uint32_t> region_pos_;  // per tet slot: its index in region_ (while in R)
   std::vector<RegionFace> faces_;
@@ -233,20 +233,21 @@ class ConeRepairer {
   bool add_to_region(std::uint32_t t) {
     if (in_region_[t] == region_stamp_) return false;
     RegionTet r;
-    r.open = 0;
+    std::uint8_t open = 0;
     r.aim_sees = 0;
     for (int i = 0; i < 4; ++i) {
       r.v[i] = tet_vertex(t, i);
       const HalfFaceId o = r.opposite[i] = mesh_.half_face_opposite(HalfFaceId(TetId(t), i));
       if (in_region(o))
-        region_tets_[region_pos_[o.tet().idx()]].open &= std::uint8_t(~(1u << o.local()));
+        open_faces_[region_pos_[o.tet().idx()]] &= std::uint8_t(~(1u << o.local()));
       else
-        r.open |= std::uint8_t(1u << i);
+        open |= std::uint8_t(1u << i);
     }
     in_region_[t] = region_stamp_;
     region_pos_[t] = std::uint32_t(region_.size());
     region_.push_back(t);
     region_tets_.push_back(r);
+    open_faces_.push_back(open);
     return true;
   }
   // R back to its first `mark` tets (the last added leave first).
@@ -255,14 +256,16 @@ class ConeRepairer {
       in_region_[region_.back()] = 0;
       region_.pop_back();
       for (const HalfFaceId o : region_tets_.back().opposite)
-        if (in_region(o)) region_tets_[region_pos_[o.tet().idx()]].open |= std::uint8_t(1u << o.local());
+        if (in_region(o)) open_faces_[region_pos_[o.tet().idx()]] |= std::uint8_t(1u << o.local());
       region_tets_.pop_back();
+      open_faces_.pop_back();
     }
   }
   void clear_region() {
     ++region_stamp_;
     region_.clear();
     region_tets_.clear();
+    open_faces_.clear();
   }
   // Adds t; when t is non-positive in the target, also the stars of its vertices (clusters merge;
   // not in aimed growth, where the stars of a far-off vertex would bring in ∂M faces aim cannot see).
@@ -283,10 +286,11 @@ class ConeRepairer {
   void region_boundary() {
     faces_.clear();
     for (std::size_t k = 0; k < region_.size(); ++k) {
+      const std::uint8_t open = open_faces_[k];
+      if (open == 0) continue;
       const RegionTet& r = region_tets_[k];
-      if (r.open == 0) continue;
       for (int i = 0; i < 4; ++i) {
-        if (!(r.open & (1u << i))) continue;
+        if (!(open & (1u << i))) continue;
         const std::uint8_t* f = kTetFace[i];
         faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], region_[k], std::uint32_t(k), i});
       }
