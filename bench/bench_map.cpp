@@ -122,6 +122,41 @@ void BM_ConeRepairScattered(benchmark::State& state) {
 }
 BENCHMARK(BM_ConeRepairScattered)->Unit(benchmark::kMillisecond);
 
+// B1 cone repair where the regions must grow far: in a 24^3 Kuhn grid, the interior vertices of
+// a block of range(0)^3 cells have their x mirrored about the block's middle in the target, which
+// inverts the block and tangles the ring around it. The repair grows one region over the block and
+// beyond; most of the time goes to its growth steps (∂R, ball checks, LPs) and to re-inserting its
+// interior vertices into the patch.
+void BM_ConeRepairMirroredBlock(benchmark::State& state) {
+  const int n = 24, b = int(state.range(0)), lo = (n - b) / 2, hi = lo + b;
+  const volmap::TetMeshData m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  auto target0 = m0.xyz;
+  const double mid = 0.5 * double(lo + hi) / n;
+  for (std::size_t v = 0; v < m0.num_vertices(); ++v) {
+    const double* p = &m0.xyz[3 * v];
+    bool inside = true;
+    for (int c = 0; c < 3; ++c) inside = inside && p[c] * n > lo + 0.5 && p[c] * n < hi - 0.5;
+    if (inside) target0[3 * v] = 2 * mid - p[0];
+  }
+  volmap::ConeRepairResult r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    volmap::TetMeshData m = m0;
+    auto bnd = bnd0;
+    auto target = target0;
+    state.ResumeTiming();
+    r = volmap::cone_repair(m, bnd, target);
+    benchmark::DoNotOptimize(target.data());
+  }
+  state.counters["clusters"] = double(r.clusters);
+  state.counters["patches"] = double(r.patches);
+  state.counters["failed"] = double(r.failed_clusters);
+  state.counters["growth_steps"] = double(r.growth_steps);
+  state.counters["max_region"] = double(r.max_region);
+}
+BENCHMARK(BM_ConeRepairMirroredBlock)->Arg(4)->Arg(6)->Unit(benchmark::kMillisecond);
+
 // ---- Same-run anchors ----------------------------------------------------------------------------
 
 // Edge matrix of tet t as Eigen columns x_{k+1} - x_0.
