@@ -134,6 +134,8 @@ class ConeRepairer {
   TimeBudget budget_;
   ConeRepairResult res_;
   std::vector<std::uint32_t> in_region_, vmark_;  // stamps per tet slot / vertex slot
+  mutable std::vector<std::uint32_t> ball_vstamp_, ball_vindex_;  // ball_check's vertex numbering
+  mutable std::uint32_t ball_stamp_ = 0;
   std::uint32_t region_stamp_ = 0, vstamp_ = 0;
   long long net_added_ = 0;
   std::vector<std::uint32_t> region_;
@@ -159,6 +161,8 @@ class ConeRepairer {
     in_region_.resize(mesh_.num_tet_slots(), 0);
     region_pos_.resize(mesh_.num_tet_slots(), 0);
     vmark_.resize(mesh_.num_vertex_slots(), 0);
+    ball_vstamp_.resize(mesh_.num_vertex_slots(), 0);
+    ball_vindex_.resize(mesh_.num_vertex_slots(), 0);
   }
   Tri face(std::uint32_t t, int i) const {
     const auto f = mesh_.half_face_vertices(HalfFaceId(TetId(t), i));
@@ -304,70 +308,97 @@ class ConeRepairer {
     bad_vertices.clear();
     bad_edges.clear();
     const std::size_t nf = faces_.size();
-    // Directed edges (min, max, forward?, face): a manifold edge has one of each direction.
+    // ∂R's vertices, numbered in the order met (stamps per vertex slot: no sort, no map).
+    if (++ball_stamp_ == 0) {
+      std::fill(ball_vstamp_.begin(), ball_vstamp_.end(), 0u);
+      ball_stamp_ = 1;
+    }
+    std::vector<std::uint32_t> verts;
+    for (const auto& f : faces_)
+      for (std::uint32_t v : f.v)
+        if (ball_vstamp_[v] != ball_stamp_) {
+          ball_vstamp_[v] = ball_stamp_;
+          ball_vindex_[v] = std::uint32_t(verts.size());
+          verts.push_back(v);
+        }
+    const std::size_t nv = verts.size();
+    // Buckets by vertex (counting sort): the directed edges by their smaller end, the corners by
+    // their vertex; each bucket is small (a vertex's degree on ∂R) and sorted on its own.
     struct E {
-      std::uint32_t a, b;
+      std::uint32_t b;  // the larger end
       std::uint8_t fwd;
       std::uint32_t f;
     };
-    std::vector<E> edges;
-    edges.reserve(3 * nf);
-    for (std::size_t f = 0; f < nf; ++f)
+    struct C {
+      std::uint32_t a, b;
+    };
+    std::vector<std::uint32_t> e_start(nv + 1, 0), c_start(nv + 1, 0);
+    for (const auto& f : faces_)
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = faces_[f].v[k], b = faces_[f].v[(k + 1) % 3];
-        edges.push_back({std::min(a, b), std::max(a, b), std::uint8_t(a < b), std::uint32_t(f)});
+        ++e_start[ball_vindex_[std::min(f.v[k], f.v[(k + 1) % 3])] + 1];
+        ++c_start[ball_vindex_[f.v[k]] + 1];
       }
-    std::sort(edges.begin(), edges.end(), [](const E& x, const E& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    for (std::size_t i = 0; i < nv; ++i) {
+      e_start[i + 1] += e_start[i];
+      c_start[i + 1] += c_start[i];
+    }
+    std::vector<E> edges(3 * nf);
+    std::vector<C> corners(3 * nf);
+    {
+      std::vector<std::uint32_t> e_fill(e_start.begin(), e_start.end() - 1), c_fill(c_start.begin(), c_start.end() - 1);
+      for (std::size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t a = faces_[f].v[k], b = faces_[f].v[(k + 1) % 3], c = faces_[f].v[(k + 2) % 3];
+          edges[e_fill[ball_vindex_[std::min(a, b)]]++] = {std::max(a, b), std::uint8_t(a < b), std::uint32_t(f)};
+          corners[c_fill[ball_vindex_[a]]++] = {b, c};
+        }
+    }
     std::vector<std::uint32_t> parent(nf);
     for (std::size_t f = 0; f < nf; ++f) parent[f] = std::uint32_t(f);
     auto find = [&](std::uint32_t x) {
       while (parent[x] != x) x = parent[x] = parent[parent[x]];
       return x;
     };
+    // Edges: a manifold edge has one directed copy each way.
     long long num_edges = 0;
-    for (std::size_t k = 0; k < edges.size();) {
-      std::size_t j = k;
-      int fwd = 0, bwd = 0;
-      while (j < edges.size() && edges[j].a == edges[k].a && edges[j].b == edges[k].b) {
-        (edges[j].fwd ? fwd : bwd)++;
-        parent[find(edges[j].f)] = find(edges[k].f);
-        ++j;
+    for (std::size_t i = 0; i < nv; ++i) {
+      const auto first = edges.begin() + long(e_start[i]), last = edges.begin() + long(e_start[i + 1]);
+      std::sort(first, last, [](const E& x, const E& y) { return x.b < y.b; });
+      for (auto k = first; k != last;) {
+        auto j = k;
+        int fwd = 0, bwd = 0;
+        while (j != last && j->b == k->b) {
+          (j->fwd ? fwd : bwd)++;
+          parent[find(j->f)] = find(k->f);
+          ++j;
+        }
+        ++num_edges;
+        if (fwd != 1 || bwd != 1) bad_edges.push_back({verts[i], k->b});
+        k = j;
       }
-      ++num_edges;
-      if (fwd != 1 || bwd != 1) bad_edges.push_back({edges[k].a, edges[k].b});
-      k = j;
     }
     // Vertex fans: at corner v of (v, a, b) the fan steps a → b; one cycle per manifold vertex.
-    struct C {
-      std::uint32_t v, a, b;
-    };
-    std::vector<C> corners;
-    corners.reserve(3 * nf);
-    for (const auto& f : faces_)
-      for (int k = 0; k < 3; ++k) corners.push_back({f.v[k], f.v[(k + 1) % 3], f.v[(k + 2) % 3]});
-    std::sort(corners.begin(), corners.end(), [](const C& x, const C& y) { return x.v != y.v ? x.v < y.v : x.a < y.a; });
-    long long num_vertices = 0;
-    for (std::size_t k = 0; k < corners.size();) {
-      std::size_t j = k;
-      while (j < corners.size() && corners[j].v == corners[k].v) ++j;
-      ++num_vertices;
-      const std::size_t deg = j - k;
-      std::uint32_t cur = corners[k].a;
+    for (std::size_t i = 0; i < nv; ++i) {
+      const auto first = corners.begin() + long(c_start[i]), last = corners.begin() + long(c_start[i + 1]);
+      std::sort(first, last, [](const C& x, const C& y) { return x.a < y.a; });
+      const std::size_t deg = std::size_t(last - first);
+      std::uint32_t cur = first->a;
       std::size_t steps = 0;
       bool ok = true;
       do {
-        auto it = std::lower_bound(corners.begin() + long(k), corners.begin() + long(j), cur,
-                                   [](const C& c, std::uint32_t a) { return c.a < a; });
-        if (it == corners.begin() + long(j) || it->a != cur || (it + 1 != corners.begin() + long(j) && (it + 1)->a == cur)) {
+        auto it = std::lower_bound(first, last, cur, [](const C& c, std::uint32_t a) { return c.a < a; });
+        if (it == last || it->a != cur || (it + 1 != last && (it + 1)->a == cur)) {
           ok = false;
           break;
         }
         cur = it->b;
         ++steps;
-      } while (cur != corners[k].a && steps <= deg);
-      if (!ok || steps != deg) bad_vertices.push_back(corners[k].v);
-      k = j;
+      } while (cur != first->a && steps <= deg);
+      if (!ok || steps != deg) bad_vertices.push_back(verts[i]);
     }
+    // The order of the sorts this replaces: by vertex, by edge.
+    std::sort(bad_vertices.begin(), bad_vertices.end());
+    std::sort(bad_edges.begin(), bad_edges.end());
     comp.assign(nf, 0);
     ncomp = 0;
     std::vector<std::uint32_t> id(nf, kNone);
@@ -376,7 +407,7 @@ class ConeRepairer {
       if (id[r] == kNone) id[r] = std::uint32_t(ncomp++);
       comp[f] = id[r];
     }
-    return num_vertices - num_edges + (long long)nf;
+    return (long long)nv - num_edges + (long long)nf;
   }
 
   // Grows R towards a ball: stars around non-manifold vertices and edges of ∂R, then the faces of
