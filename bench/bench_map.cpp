@@ -88,6 +88,27 @@ void BM_LinkKernelLP(benchmark::State& state) {
 }
 BENCHMARK(BM_LinkKernelLP);
 
+// Times cone_repair on copies of (mesh, boundary flags, target) (the copies are not timed) and
+// reports what the last run did.
+void time_cone_repair(benchmark::State& state, const volmap::TetMeshData& m0, const std::vector<std::uint8_t>& bnd0,
+                      const std::vector<double>& target0) {
+  volmap::ConeRepairResult r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    volmap::TetMeshData m = m0;
+    auto bnd = bnd0;
+    auto target = target0;
+    state.ResumeTiming();
+    r = volmap::cone_repair(m, bnd, target);
+    benchmark::DoNotOptimize(target.data());
+  }
+  state.counters["clusters"] = double(r.clusters);
+  state.counters["patches"] = double(r.patches);
+  state.counters["failed"] = double(r.failed_clusters);
+  state.counters["growth_steps"] = double(r.growth_steps);
+  state.counters["max_region"] = double(r.max_region);
+}
+
 // B1 cone repair of a 24^3 Kuhn grid (82 944 tets) with 64 well-separated interior vertices
 // scrambled in the target (each inverts part of its star): cluster search over every tet per round,
 // region growth, kernel checks, vertex re-insertion. The copy of the inputs is not timed.
@@ -106,19 +127,7 @@ void BM_ConeRepairScattered(benchmark::State& state) {
           target0[3 * v + c] += (double((seed >> 8) % 1000) / 1000.0 - 0.5) * 0.5 / (n / 6.0);
         }
       }
-  volmap::ConeRepairResult r;
-  for (auto _ : state) {
-    state.PauseTiming();
-    volmap::TetMeshData m = m0;
-    auto bnd = bnd0;
-    auto target = target0;
-    state.ResumeTiming();
-    r = volmap::cone_repair(m, bnd, target);
-    benchmark::DoNotOptimize(target.data());
-  }
-  state.counters["clusters"] = double(r.clusters);
-  state.counters["patches"] = double(r.patches);
-  state.counters["failed"] = double(r.failed_clusters);
+  time_cone_repair(state, m0, bnd0, target0);
 }
 BENCHMARK(BM_ConeRepairScattered)->Unit(benchmark::kMillisecond);
 
@@ -139,21 +148,7 @@ void BM_ConeRepairMirroredBlock(benchmark::State& state) {
     for (int c = 0; c < 3; ++c) inside = inside && p[c] * n > lo + 0.5 && p[c] * n < hi - 0.5;
     if (inside) target0[3 * v] = 2 * mid - p[0];
   }
-  volmap::ConeRepairResult r;
-  for (auto _ : state) {
-    state.PauseTiming();
-    volmap::TetMeshData m = m0;
-    auto bnd = bnd0;
-    auto target = target0;
-    state.ResumeTiming();
-    r = volmap::cone_repair(m, bnd, target);
-    benchmark::DoNotOptimize(target.data());
-  }
-  state.counters["clusters"] = double(r.clusters);
-  state.counters["patches"] = double(r.patches);
-  state.counters["failed"] = double(r.failed_clusters);
-  state.counters["growth_steps"] = double(r.growth_steps);
-  state.counters["max_region"] = double(r.max_region);
+  time_cone_repair(state, m0, bnd0, target0);
 }
 BENCHMARK(BM_ConeRepairMirroredBlock)->Arg(4)->Arg(6)->Unit(benchmark::kMillisecond);
 
