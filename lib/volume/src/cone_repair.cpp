@@ -52,13 +52,12 @@ double signed_volume(const double* a, const double* b, const double* c, const do
   return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
 }
 
-// A face of ∂R: outward vertex order, the half-face on the other side (invalid on ∂M), R's tet.
+// A face of ∂R: outward vertex order, the half-face on the other side (invalid on ∂M), the R tet.
 struct RegionFace {
   Tri v;
   HalfFaceId outside;
-  std::uint32_t inner_tet;
-  std::uint32_t inner_pos;  // index of inner_tet in the region's list
-  int local;                // the face is face `local` of inner_tet
+  std::uint32_t inner_pos;  // the R tet it bounds, as its index in the region's list
+  int local;                // the face is that tet's face `local`
 };
 
 // A tet of a patch before it is committed: vertices (kPendingApex for a new apex) and the region tet
@@ -296,7 +295,7 @@ class ConeRepairer {
       for (int i = 0; i < 4; ++i) {
         if (!(open & (1u << i))) continue;
         const std::uint8_t* f = kTetFace[i];
-        faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], region_[k], std::uint32_t(k), i});
+        faces_.push_back({{r.v[f[0]], r.v[f[1]], r.v[f[2]]}, r.opposite[i], std::uint32_t(k), i});
       }
     }
   }
@@ -396,7 +395,7 @@ class ConeRepairer {
       } while (cur != first->a && steps <= deg);
       if (!ok || steps != deg) bad_vertices.push_back(verts[i]);
     }
-    // The order of the sorts this replaces: by vertex, by edge.
+    // By vertex id and by (smaller, larger) end: the order grow_towards_ball adds their stars in.
     std::sort(bad_vertices.begin(), bad_vertices.end());
     std::sort(bad_edges.begin(), bad_edges.end());
     comp.assign(nf, 0);
@@ -990,7 +989,7 @@ class ConeRepairer {
   PatchBuild build_patch(std::uint32_t w, const std::vector<std::uint32_t>& interior, std::vector<LocalTet>& live) {
     std::vector<LocalTet> local;
     local.reserve(faces_.size() + 8 * interior.size());
-    for (const auto& f : faces_) local.push_back({{f.v[0], f.v[1], f.v[2], w}, f.inner_tet, false});
+    for (const auto& f : faces_) local.push_back({{f.v[0], f.v[1], f.v[2], w}, region_[f.inner_pos], false});
     for (std::uint32_t v : interior)
       if (v != w && !insert_vertex(v, local)) return PatchBuild::reinsertion;
     live.clear();
