@@ -443,11 +443,11 @@ class VolumeMapper {
     }
   }
 
-  // §7 B1 rounds over the whole time limit: repair → link kernel → local FFM on the repaired mesh
-  // (the rest of the map is valid and stays frozen) → repair again. When the repair and the local
-  // solve both stall: one small-lift TLC over the whole mesh (its moves at an equal count change the
-  // state the repair sees), after which the repair widens its search; at the next stall, stop (the
-  // time left goes to the restart from the other start, when there is one).
+  // §7 B1 rounds over the whole time limit: repair → link kernel → (on a handful of tets) local FFM
+  // on the repaired mesh (the rest of the map is valid and stays frozen) → repair again. When the
+  // repair and the local solve both stall: one small-lift TLC over the whole mesh (its moves at an
+  // equal count change the state the repair sees), after which the repair widens its search; at the
+  // next stall, stop (the time left goes to the restart from the other start, when there is one).
   void repair_rounds(const TimeBudget& budget) {
     budget_ = &budget;
     bool tlc_retried = false;
@@ -462,12 +462,13 @@ class VolumeMapper {
       flip_bad_tets();
       if (bad_ == 0 || budget_->expired()) break;
       // Few tets left: the split (with its own short local FFM) before the long local FFM at fixed
-      // connectivity, which rarely finishes where a repair left tets (measured below split_bad_tets).
+      // connectivity, which rarely finishes where a repair left tets (measured below split_bad_tets)
+      // and runs only on a handful (VolumeMapOptions::round_local_max_bad).
       const std::size_t splits_before = split_rounds_;
       if (split_bad_tets()) continue;
       const bool split_tried = split_rounds_ > splits_before;
       const std::size_t bad_local = bad_;
-      local_ffm(0.15);
+      if (bad_ <= options_.round_local_max_bad) local_ffm(0.15);
       if (bad_ == 0 || budget_->expired()) break;
       if (!(cr.patches == 0 && bad_ >= bad_before && bad_ >= bad_local)) continue;
       if (!split_tried && split_bad_tets()) continue;  // finer where it is tangled: the next round starts from there
