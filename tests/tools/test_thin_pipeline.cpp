@@ -254,7 +254,7 @@ TEST_CASE("coarse thin plate onto the tet: the B1 rounds run local FFM only on a
     return;
   }
   // The first repair round leaves tens of non-positive tets (54 in the issue-15 set run). Local FFM
-  // on that many lowered the count in none of 368 calls over the thin_coarse, coarse and surfaces
+  // on that many lowered the count in none of 362 calls over the thin_coarse, coarse and surfaces
   // sets (docs/mapping.md §8 step 8), so after a repair round it runs only with at most 5 left
   // (VolumeMapOptions::round_local_max_bad). The count before a stage is the best state of its run
   // so far: the judge undoes a stage that ends higher.

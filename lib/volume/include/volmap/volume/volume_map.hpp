@@ -90,7 +90,7 @@ struct VolumeMapOptions {
   bool local_untangle = true;
   // With refinement: the B1 rounds run local FFM on what a repair round left only when at most this
   // many non-positive tets are left (docs/mapping.md §8 step 8: above that it lowered the count in
-  // none of 368 calls over the thin_coarse, coarse and surfaces sets).
+  // none of 362 calls over the thin_coarse, coarse and surfaces sets).
   std::size_t round_local_max_bad = 5;
   // Kernel descent (§10) after every link-kernel and local FFM stage that leaves non-positive tets
   // (cascade only).
