@@ -135,6 +135,21 @@ class ConeRepairer {
   std::vector<std::uint32_t> in_region_, vmark_;  // stamps per tet slot / vertex slot
   mutable std::vector<std::uint32_t> ball_vstamp_, ball_vindex_;  // ball_check's vertex numbering
   mutable std::uint32_t ball_stamp_ = 0;
+  // ball_check's buffers, kept between calls (it runs at every growth step).
+  struct BallEdge {
+    std::uint32_t b;  // the larger end (the bucket is the smaller one)
+    std::uint8_t fwd;
+    std::uint32_t f;
+  };
+  struct BallCorner {
+    std::uint32_t a, b;  // at the bucket's vertex v, face (v, a, b)
+  };
+  struct BallScratch {
+    std::vector<std::uint32_t> verts, e_start, c_start, e_fill, c_fill, parent, id;
+    std::vector<BallEdge> edges;
+    std::vector<BallCorner> corners;
+  };
+  mutable BallScratch ball_;
   std::uint32_t region_stamp_ = 0, vstamp_ = 0;
   long long net_added_ = 0;
   std::vector<std::uint32_t> region_;
@@ -312,7 +327,9 @@ class ConeRepairer {
       std::fill(ball_vstamp_.begin(), ball_vstamp_.end(), 0u);
       ball_stamp_ = 1;
     }
-    std::vector<std::uint32_t> verts;
+    BallScratch& b = ball_;
+    std::vector<std::uint32_t>& verts = b.verts;
+    verts.clear();
     for (const auto& f : faces_)
       for (std::uint32_t v : f.v)
         if (ball_vstamp_[v] != ball_stamp_) {
@@ -323,15 +340,12 @@ class ConeRepairer {
     const std::size_t nv = verts.size();
     // Buckets by vertex (counting sort): the directed edges by their smaller end, the corners by
     // their vertex; each bucket is small (a vertex's degree on ∂R) and sorted on its own.
-    struct E {
-      std::uint32_t b;  // the larger end
-      std::uint8_t fwd;
-      std::uint32_t f;
-    };
-    struct C {
-      std::uint32_t a, b;
-    };
-    std::vector<std::uint32_t> e_start(nv + 1, 0), c_start(nv + 1, 0);
+    using E = BallEdge;
+    using C = BallCorner;
+    std::vector<std::uint32_t>& e_start = b.e_start;
+    std::vector<std::uint32_t>& c_start = b.c_start;
+    e_start.assign(nv + 1, 0);
+    c_start.assign(nv + 1, 0);
     for (const auto& f : faces_)
       for (int k = 0; k < 3; ++k) {
         ++e_start[ball_vindex_[std::min(f.v[k], f.v[(k + 1) % 3])] + 1];
@@ -341,18 +355,20 @@ class ConeRepairer {
       e_start[i + 1] += e_start[i];
       c_start[i + 1] += c_start[i];
     }
-    std::vector<E> edges(3 * nf);
-    std::vector<C> corners(3 * nf);
-    {
-      std::vector<std::uint32_t> e_fill(e_start.begin(), e_start.end() - 1), c_fill(c_start.begin(), c_start.end() - 1);
-      for (std::size_t f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t a = faces_[f].v[k], b = faces_[f].v[(k + 1) % 3], c = faces_[f].v[(k + 2) % 3];
-          edges[e_fill[ball_vindex_[std::min(a, b)]]++] = {std::max(a, b), std::uint8_t(a < b), std::uint32_t(f)};
-          corners[c_fill[ball_vindex_[a]]++] = {b, c};
-        }
-    }
-    std::vector<std::uint32_t> parent(nf);
+    std::vector<E>& edges = b.edges;
+    std::vector<C>& corners = b.corners;
+    edges.resize(3 * nf);
+    corners.resize(3 * nf);
+    b.e_fill.assign(e_start.begin(), e_start.end() - 1);
+    b.c_fill.assign(c_start.begin(), c_start.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t u = faces_[f].v[k], w = faces_[f].v[(k + 1) % 3], x = faces_[f].v[(k + 2) % 3];
+        edges[b.e_fill[ball_vindex_[std::min(u, w)]]++] = {std::max(u, w), std::uint8_t(u < w), std::uint32_t(f)};
+        corners[b.c_fill[ball_vindex_[u]]++] = {w, x};
+      }
+    std::vector<std::uint32_t>& parent = b.parent;
+    parent.resize(nf);
     for (std::size_t f = 0; f < nf; ++f) parent[f] = std::uint32_t(f);
     auto find = [&](std::uint32_t x) {
       while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -400,7 +416,8 @@ class ConeRepairer {
     std::sort(bad_edges.begin(), bad_edges.end());
     comp.assign(nf, 0);
     ncomp = 0;
-    std::vector<std::uint32_t> id(nf, kNone);
+    std::vector<std::uint32_t>& id = b.id;
+    id.assign(nf, kNone);
     for (std::size_t f = 0; f < nf; ++f) {
       const std::uint32_t r = find(std::uint32_t(f));
       if (id[r] == kNone) id[r] = std::uint32_t(ncomp++);
