@@ -43,4 +43,21 @@ StrictHalfspace strict_halfspace(const double* a, const double* b, const double*
 // no solution). False for mismatched sizes or an empty system. Decided in exact rationals.
 bool farkas_certifies_empty(const std::vector<StrictHalfspace>& halfspaces, const std::vector<Rational>& multipliers);
 
+// --- lines in Plücker coordinates and Gordan certificates that no line meets them all ---------------
+// The line through p then q: direction d = q − p and moment m = p × q (exact rationals). Their
+// permuted inner product side(L, L') = d·m' + d'·m decides tets: orient3d(u, v, x, y) =
+// −side(line(u, v), line(x, y)), so the tet (u, v, x, y) is positive iff side(uv, xy) < 0, a strict
+// inequality that is linear in the six coordinates of uv.
+struct PluckerLine {
+  std::array<Rational, 3> d, m;
+};
+PluckerLine plucker_line(const double* p, const double* q);
+Rational side(const PluckerLine& a, const PluckerLine& b);
+
+// True iff `multipliers` prove that no line ℓ has side(ℓ, L_j) < 0 for every j: λ_j >= 0, not all
+// zero, Σ λ_j L_j = 0 in all six coordinates. Summing λ_j side(ℓ, L_j) gives side(ℓ, Σ λ_j L_j) = 0,
+// which a sum of negative terms cannot be; ℓ may be any six-vector, a line or not (Gordan's theorem:
+// such λ exist exactly when that linear system has no solution). Decided in exact rationals.
+bool gordan_certifies_no_line(const std::vector<PluckerLine>& lines, const std::vector<Rational>& multipliers);
+
 }  // namespace volmap
