@@ -48,6 +48,21 @@ bool has_kind(const std::vector<volmap::InfeasibilityCertificate>& cs, Infeasibi
   return std::any_of(cs.begin(), cs.end(), [&](const auto& c) { return c.kind == k; });
 }
 
+// The first certificate of kind k (nullptr when there is none).
+const volmap::InfeasibilityCertificate* first_of_kind(const std::vector<volmap::InfeasibilityCertificate>& cs, InfeasibilityKind k) {
+  const auto it = std::find_if(cs.begin(), cs.end(), [&](const auto& c) { return c.kind == k; });
+  return it == cs.end() ? nullptr : &*it;
+}
+
+// The mapper at fixed connectivity, 5 s: its result (no map may be claimed where a certificate holds).
+volmap::VolumeMapResult map_at_fixed_connectivity(const volmap::TetMeshData& m, const std::vector<std::uint8_t>& locked,
+                                                  const std::vector<double>& target) {
+  volmap::VolumeMapOptions o;
+  o.allow_refinement = false;
+  o.time_limit_seconds = 5;
+  return volmap::compute_volume_map(m, map_test::boundary_map_of(locked, target), o);
+}
+
 // Independent oracle for an EmptyLinkKernel certificate of the bipyramid: each constraint tet is
 // (a, b, c, v) with v last, so its constraint is orient3d(a, b, c, x) > 0, i.e. n·x > n·a with
 // n = (c − a) × (b − a); the multipliers must be >= 0, not all 0, Σλn = 0 and Σλ n·a >= 0.
@@ -249,9 +264,9 @@ TEST_CASE("an edge fan whose fixed ring vertices share a half-plane of the edge'
   const volmap::TetMesh mesh(f.mesh);
   REQUIRE(volmap::count_nonpositive(f.mesh.xyz, f.mesh.tets) == 0);  // a valid source
   const auto cs = certificates_of(f.mesh, f.locked, f.target);
-  const auto it = std::find_if(cs.begin(), cs.end(), [](const auto& c) { return c.kind == InfeasibilityKind::EdgeFanWraps; });
-  REQUIRE(it != cs.end());
-  const volmap::InfeasibilityCertificate& c = *it;
+  const volmap::InfeasibilityCertificate* found = first_of_kind(cs, InfeasibilityKind::EdgeFanWraps);
+  REQUIRE(found != nullptr);
+  const volmap::InfeasibilityCertificate& c = *found;
   INFO(volmap::describe(c));
   // The edge a b, the ring c (or q) .. w .. q (or c): its ends fixed and in one half-plane (oracle),
   // the free vertex between them, one constraint tet per step.
@@ -280,11 +295,147 @@ TEST_CASE("an edge fan whose fixed ring vertices share a half-plane of the edge'
   skipping.constraint_tets = {c.constraint_tets.front()};
   CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, f.target, skipping));
   // The mapper at fixed connectivity stops with the certificate (no map is claimed).
-  const volmap::BoundaryMap map = map_test::boundary_map_of(f.locked, f.target);
-  volmap::VolumeMapOptions o;
-  o.allow_refinement = false;
-  o.time_limit_seconds = 5;
-  const auto r = volmap::compute_volume_map(f.mesh, map, o);
+  const auto r = map_at_fixed_connectivity(f.mesh, f.locked, f.target);
   CHECK_FALSE(r.certified);
   CHECK(has_kind(r.infeasibility, InfeasibilityKind::EdgeFanWraps));
+}
+
+namespace {
+
+// An octahedron N, S over the ring x1..x4 with an interior edge uv on its axis: ids u=0, v=1, ring
+// 2..5, N=6, S=7; tets (u, v, x_i, x_i+1), (v, N, ...) and (u, S, ...), oriented positive. Only u and
+// v are free. In the image the ring is a bow-tie in z = 0, so no line (no placement of u and v) sees
+// the four ring edges turn one way. (u's and v's cones over the same ring are empty kernels too, by
+// the same argument for the lines uS and vN; on G1 the free edge is stuck alone, see the data test.)
+struct FreeEdgeOverBowtie {
+  volmap::TetMeshData mesh;
+  std::vector<std::uint8_t> locked = {0, 0, 1, 1, 1, 1, 1, 1};
+  std::vector<double> target;
+  FreeEdgeOverBowtie() {
+    mesh.xyz = {0, 0, -0.3, 0, 0, 0.3, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      const std::uint32_t a = 2 + i, b = 2 + (i + 1) % 4;
+      for (std::array<std::uint32_t, 4> t : {std::array<std::uint32_t, 4>{0, 1, a, b}, {1, 6, a, b}, {0, 7, a, b}}) {
+        const double* x = mesh.xyz.data();
+        if (volmap::orient3d(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]) < 0) std::swap(t[2], t[3]);
+        mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
+      }
+    }
+    target = mesh.xyz;
+    const double bowtie[4][2] = {{-1, -1}, {1, 1}, {1, -1}, {-1, 1}};
+    for (int i = 0; i < 4; ++i) target[3 * (2 + i)] = bowtie[i][0], target[3 * (2 + i) + 1] = bowtie[i][1];
+  }
+};
+
+// Exact 4×4 determinant det[p_i 1] of a tet with u's and v's images replaced by U and V (oracle
+// rationals, Laplace expansion): the tet's orient3d as a function of the free pair.
+volmap_oracle::Q tet_det(const volmap::TetMeshData& m, const std::vector<double>& X, std::uint32_t t, const volmap_oracle::Q* U,
+                         const volmap_oracle::Q* V, std::uint32_t u, std::uint32_t v) {
+  using volmap_oracle::Q;
+  Q a[4][4];
+  for (int r = 0; r < 4; ++r) {
+    const std::uint32_t w = m.tets[4 * t + std::size_t(r)];
+    for (int i = 0; i < 3; ++i) a[r][i] = w == u ? U[i] : w == v ? V[i] : Q(X[3 * w + std::size_t(i)]);
+    a[r][3] = 1;
+  }
+  auto det3 = [&](int skip_row, int c0, int c1, int c2) {
+    int r[3], k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != skip_row) r[k++] = i;
+    return a[r[0]][c0] * (a[r[1]][c1] * a[r[2]][c2] - a[r[1]][c2] * a[r[2]][c1]) -
+           a[r[0]][c1] * (a[r[1]][c0] * a[r[2]][c2] - a[r[1]][c2] * a[r[2]][c0]) +
+           a[r[0]][c2] * (a[r[1]][c0] * a[r[2]][c1] - a[r[1]][c1] * a[r[2]][c0]);
+  };
+  Q d = 0;  // expansion along the last column (all ones)
+  for (int r = 0; r < 4; ++r) d += ((r % 2 == 0) ? -1 : 1) * det3(r, 0, 1, 2);
+  return d;
+}
+
+// Independent oracle for a FreeEdgeLine certificate: Σ λ_j orient3d(tet_j) is the zero polynomial in
+// the free pair's images (checked exactly at random rational points), so the orientations cannot all
+// be positive; and λ >= 0, not all zero.
+bool oracle_free_edge_line(const volmap::TetMeshData& m, const std::vector<double>& X, const volmap::InfeasibilityCertificate& c) {
+  using volmap_oracle::Q;
+  if (c.simplex.size() != 2 || c.multipliers.size() != c.constraint_tets.size()) return false;
+  bool positive = false;
+  for (const Rational& l : c.multipliers) {
+    if (l < 0) return false;
+    positive = positive || l > 0;
+  }
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> g(-1000, 1000);
+  for (int it = 0; it < 12; ++it) {
+    Q U[3], V[3];
+    for (int i = 0; i < 3; ++i) U[i] = Q(g(rng), 7), V[i] = Q(g(rng), 11);
+    Q sum = 0;
+    for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
+      sum += Q(c.multipliers[j]) * tet_det(m, X, c.constraint_tets[j], U, V, c.simplex[0], c.simplex[1]);
+    if (sum != 0) return false;
+  }
+  return positive;
+}
+
+}  // namespace
+
+TEST_CASE("a free edge over a bow-tie ring of fixed vertices: an exact free-edge-line certificate") {
+  const FreeEdgeOverBowtie f;
+  const volmap::TetMesh mesh(f.mesh);
+  REQUIRE(volmap::count_nonpositive(f.mesh.xyz, f.mesh.tets) == 0);  // a valid source
+  CHECK(certificates_of(f.mesh, f.locked, f.mesh.xyz).empty());       // the source itself is a valid map
+  const auto cs = certificates_of(f.mesh, f.locked, f.target);
+  const volmap::InfeasibilityCertificate* found = first_of_kind(cs, InfeasibilityKind::FreeEdgeLine);
+  REQUIRE(found != nullptr);
+  const volmap::InfeasibilityCertificate& c = *found;
+  INFO(volmap::describe(c));
+  CHECK(std::set<std::uint32_t>(c.simplex.begin(), c.simplex.end()) == std::set<std::uint32_t>{0, 1});
+  CHECK(c.constraint_tets.size() == 4);
+  CHECK(oracle_free_edge_line(f.mesh, f.target, c));
+  CHECK(volmap::verify_certificate(mesh, f.locked, f.target, c));
+  // Falsification by sampling: no placement of u and v tried makes all of the constraint tets positive.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> g(-2, 2);
+  for (int it = 0; it < 2000; ++it) {
+    std::vector<double> X = f.target;
+    for (int i = 0; i < 6; ++i) X[std::size_t(i)] = g(rng);
+    bool all_positive = true;
+    for (std::uint32_t t : c.constraint_tets) {
+      const std::uint32_t* v = &f.mesh.tets[4 * t];
+      all_positive = all_positive && volmap_oracle::orient3d(&X[3 * v[0]], &X[3 * v[1]], &X[3 * v[2]], &X[3 * v[3]]) > 0;
+    }
+    CHECK_FALSE(all_positive);
+  }
+  // Refused where the claim does not hold: the ring convex again, a multiplier changed, u locked.
+  CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, f.mesh.xyz, c));
+  volmap::InfeasibilityCertificate changed = c;
+  changed.multipliers.back() *= 2;
+  CHECK_FALSE(volmap::verify_certificate(mesh, f.locked, f.target, changed));
+  std::vector<std::uint8_t> u_locked = f.locked;
+  u_locked[0] = 1;
+  CHECK_FALSE(volmap::verify_certificate(mesh, u_locked, f.target, c));
+  // The mapper at fixed connectivity stops with the certificate (no map is claimed).
+  const auto r = map_at_fixed_connectivity(f.mesh, f.locked, f.target);
+  CHECK_FALSE(r.certified);
+  CHECK(has_kind(r.infeasibility, InfeasibilityKind::FreeEdgeLine));
+}
+
+TEST_CASE("bone onto the cube at fixed connectivity: a free edge that no line can serve (G1 data)") {
+  VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/bone.mesh");
+  VOLMAP_REQUIRE_DATA(map_path, "volmap/G1_cube/bone_cube.txt");
+  const volmap::TetMeshData m = volmap::read_medit(mesh_path.string());
+  const volmap::BoundaryMap map = volmap::read_boundary_map(map_path.string());
+  std::vector<std::uint8_t> locked(m.num_vertices(), 0);
+  std::vector<double> X(3 * m.num_vertices(), 0.0);
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    locked[map.vids[i]] = 1;
+    std::copy_n(&map.xyz[3 * i], 3, &X[3 * map.vids[i]]);
+  }
+  const volmap::TetMesh mesh(m);
+  const auto cs = volmap::find_local_infeasibility(mesh, locked, X);
+  // The only certificate: no fixed simplex, no fixed link is infeasible on its own.
+  REQUIRE(cs.size() == 1);
+  const auto it = cs.begin();
+  INFO(volmap::describe(*it));
+  CHECK(it->kind == InfeasibilityKind::FreeEdgeLine);
+  CHECK(oracle_free_edge_line(m, X, *it));
+  CHECK(volmap::verify_certificate(mesh, locked, X, *it));
 }

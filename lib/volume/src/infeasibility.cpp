@@ -19,23 +19,26 @@ namespace volmap {
 
 namespace {
 
-// The null vector of the 3×k matrix whose columns are the normals of `ks` (k <= 4), when the null
-// space has dimension one; scaled so that its entries are >= 0 when that is possible. Empty otherwise.
-std::vector<Rational> one_dimensional_null_vector(const std::vector<StrictHalfspace>& ks) {
-  const std::size_t k = ks.size();
-  std::vector<std::vector<Rational>> m(3, std::vector<Rational>(k));
-  for (int r = 0; r < 3; ++r)
-    for (std::size_t c = 0; c < k; ++c) m[r][c] = ks[c].n[r];
+// The null vector of the dim×k matrix whose columns are `columns` (k vectors of dim entries), when the
+// null space has dimension one; scaled so that its entries are >= 0 when that is possible. Empty
+// otherwise.
+std::vector<Rational> one_dimensional_null_vector(const std::vector<std::vector<Rational>>& columns) {
+  const std::size_t k = columns.size();
+  if (k == 0) return {};
+  const std::size_t dim = columns[0].size();
+  std::vector<std::vector<Rational>> m(dim, std::vector<Rational>(k));
+  for (std::size_t r = 0; r < dim; ++r)
+    for (std::size_t c = 0; c < k; ++c) m[r][c] = columns[c][r];
   std::vector<int> pivot_col;  // reduced row echelon form
   std::size_t row = 0;
-  for (std::size_t c = 0; c < k && row < 3; ++c) {
+  for (std::size_t c = 0; c < k && row < dim; ++c) {
     std::size_t p = row;
-    while (p < 3 && m[p][c] == 0) ++p;
-    if (p == 3) continue;
+    while (p < dim && m[p][c] == 0) ++p;
+    if (p == dim) continue;
     std::swap(m[p], m[row]);
     const Rational inv = Rational(1) / m[row][c];
     for (std::size_t j = 0; j < k; ++j) m[row][j] *= inv;
-    for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t r = 0; r < dim; ++r)
       if (r != row && m[r][c] != 0) {
         const Rational f = m[r][c];
         for (std::size_t j = 0; j < k; ++j) m[r][j] -= f * m[row][j];
@@ -55,12 +58,12 @@ std::vector<Rational> one_dimensional_null_vector(const std::vector<StrictHalfsp
   return lambda;
 }
 
-// Calls f(subset) for every subset of {0..n-1} of size 1..4 in increasing size; stops when f
+// Calls f(subset) for every subset of {0..n-1} of size 1..max_size in increasing size; stops when f
 // returns true (and returns true then).
 template <class F>
-bool for_each_small_subset(std::size_t n, F&& f) {
+bool for_each_small_subset(std::size_t n, std::size_t max_size, F&& f) {
   std::vector<std::size_t> s;
-  for (std::size_t size = 1; size <= std::min<std::size_t>(4, n); ++size) {
+  for (std::size_t size = 1; size <= std::min(max_size, n); ++size) {
     s.resize(size);
     std::iota(s.begin(), s.end(), std::size_t(0));
     while (true) {
@@ -94,6 +97,31 @@ bool locked_link_face(const TetMesh& mesh, const std::vector<std::uint8_t>& lock
 }
 
 const double* at(const std::vector<double>& X, std::uint32_t v) { return X.data() + 3 * std::size_t(v); }
+
+// The two vertices of tet t other than u and v, ordered so that (u, v, x, y) is an even permutation
+// of the tet's vertex order (orient3d(u, v, x, y) is then the tet's own orientation). False when t
+// is not a live tet holding both u and v.
+bool opposite_edge_oriented(const TetMesh& mesh, std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t* x,
+                            std::uint32_t* y) {
+  if (t >= mesh.num_tet_slots() || !mesh.tet_is_live(TetId(t)) || u == v) return false;
+  const auto tv = mesh.tet_vertices(TetId(t));
+  int pos[4], n = 2;
+  pos[0] = pos[1] = -1;
+  for (int i = 0; i < 4; ++i) {
+    const std::uint32_t w = tv[std::size_t(i)].idx();
+    if (w == u) pos[0] = i;
+    else if (w == v) pos[1] = i;
+    else if (n < 4) pos[n++] = i;
+  }
+  if (pos[0] < 0 || pos[1] < 0 || n != 4) return false;
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += pos[i] > pos[j];
+  if (inversions % 2 != 0) std::swap(pos[2], pos[3]);
+  *x = tv[std::size_t(pos[2])].idx();
+  *y = tv[std::size_t(pos[3])].idx();
+  return true;
+}
 
 // Is (a, b) an edge of a face of ∂M?
 bool edge_on_boundary(const TetMesh& mesh, std::uint32_t a, std::uint32_t b) {
@@ -159,6 +187,7 @@ class CertificateSearch {
     chords_touching_boundary();
     empty_link_kernels();
     wrapping_edge_fans();
+    free_edge_lines();
     return std::move(found_);
   }
 
@@ -281,6 +310,92 @@ class CertificateSearch {
     }
   }
 
+  struct OppositeEdge {
+    std::uint32_t tet, x, y;
+  };
+
+  // Edges between two free vertices whose star has tets with a locked opposite edge (FreeEdgeLine).
+  void free_edge_lines() {
+    std::vector<OppositeEdge> opposite;
+    for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
+      const auto ends = mesh_.edge_vertices(EdgeId(e));
+      const std::uint32_t u = ends[0].idx(), v = ends[1].idx();
+      if (locked_[u] || locked_[v]) continue;
+      opposite.clear();
+      mesh_.edge_star(EdgeId(e), [&](TetId t) {
+        OppositeEdge o{t.idx(), 0, 0};
+        if (opposite_edge_oriented(mesh_, t.idx(), u, v, &o.x, &o.y) && locked_[o.x] && locked_[o.y]) opposite.push_back(o);
+      });
+      if (opposite.size() >= std::max<std::size_t>(1, options_.min_fixed_opposite_edges)) try_free_edge(u, v, opposite);
+    }
+  }
+
+  // The LP over the six coordinates of the line uv (double; rows normalised, in a frame centred at
+  // the locked points) decides whether to look: each tet asks side(uv, xy) < 0. The rows tightest at
+  // its optimum are tried first, in subsets of up to seven (Carathéodory: a minimal Gordan set in six
+  // unknowns has at most seven members), each with the one-dimensional rational null vector.
+  void try_free_edge(std::uint32_t u, std::uint32_t v, const std::vector<OppositeEdge>& opposite) {
+    const std::size_t m = opposite.size();
+    double centre[3] = {0, 0, 0};
+    for (const OppositeEdge& o : opposite)
+      for (int i = 0; i < 3; ++i) centre[i] += (at(X_, o.x)[i] + at(X_, o.y)[i]) / double(2 * m);
+    std::vector<double> rows;
+    rows.reserve(6 * m);
+    for (const OppositeEdge& o : opposite) {
+      double p[3], q[3];
+      for (int i = 0; i < 3; ++i) {
+        p[i] = at(X_, o.x)[i] - centre[i];
+        q[i] = at(X_, o.y)[i] - centre[i];
+      }
+      // −(moment, direction) of xy: its product with (direction, moment) of uv is −side(uv, xy).
+      const double r[6] = {-(p[1] * q[2] - p[2] * q[1]), -(p[2] * q[0] - p[0] * q[2]), -(p[0] * q[1] - p[1] * q[0]),
+                           -(q[0] - p[0]),               -(q[1] - p[1]),               -(q[2] - p[2])};
+      double len = 0;
+      for (double x : r) len += x * x;
+      len = std::sqrt(len);
+      for (double x : r) rows.push_back(len > 0 ? x / len : 0.0);
+    }
+    double line[6], slack = 0;
+    std::vector<double> weight;
+    const bool solved = max_min_slack_in_box(rows, 6, line, &slack, &weight);
+    if (solved && slack > 1e-9) return;  // a line clearly satisfies them all
+    // The rows the LP's dual weighs most first (its support is the Gordan set when the double LP is
+    // right), then the rows tightest at its optimum.
+    std::vector<std::size_t> order(m);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    if (solved) {
+      std::vector<double> residual(m, 0.0);
+      for (std::size_t j = 0; j < m; ++j)
+        for (int i = 0; i < 6; ++i) residual[j] += rows[6 * j + std::size_t(i)] * line[i];
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return weight[a] != weight[b] ? weight[a] > weight[b] : residual[a] < residual[b];
+      });
+    }
+    std::vector<PluckerLine> lines(m);
+    for (std::size_t j = 0; j < m; ++j) lines[j] = plucker_line(at(X_, opposite[j].x), at(X_, opposite[j].y));
+    std::vector<PluckerLine> sub;
+    std::vector<std::vector<Rational>> columns;
+    for (std::size_t pool : {std::min<std::size_t>(m, 8), m <= 11 ? m : std::size_t(0)}) {
+      if (pool == 0) break;
+      const bool hit = for_each_small_subset(pool, 7, [&](const std::vector<std::size_t>& s) {
+        sub.clear();
+        columns.clear();
+        for (std::size_t i : s) {
+          const PluckerLine& l = lines[order[i]];
+          sub.push_back(l);
+          columns.push_back({l.d[0], l.d[1], l.d[2], l.m[0], l.m[1], l.m[2]});
+        }
+        std::vector<Rational> lambda = one_dimensional_null_vector(columns);
+        if (!gordan_certifies_no_line(sub, lambda)) return false;
+        InfeasibilityCertificate c{InfeasibilityKind::FreeEdgeLine, {u, v}, opposite[order[s[0]]].tet, {}, lambda, {}, {}};
+        for (std::size_t i : s) c.constraint_tets.push_back(opposite[order[i]].tet);
+        keep(std::move(c));
+        return true;
+      });
+      if (hit || pool == m) break;
+    }
+  }
+
   // The kernel LP bounds its point by the triangles' bounding box, which is flat when the faces
   // are coplanar (a partial link on a domain facet). A triangle with a zero normal is left out of
   // the LP but widens the box: one spanning the box grown by its diagonal on every side.
@@ -321,10 +436,15 @@ class CertificateSearch {
     for (std::size_t pool : {std::min<std::size_t>(m, 8), m <= 14 ? m : std::size_t(0)}) {
       if (pool == 0) break;
       std::vector<StrictHalfspace> sub;
-      const bool hit = for_each_small_subset(pool, [&](const std::vector<std::size_t>& s) {
+      std::vector<std::vector<Rational>> normals;
+      const bool hit = for_each_small_subset(pool, 4, [&](const std::vector<std::size_t>& s) {
         sub.clear();
-        for (std::size_t i : s) sub.push_back(ks[order[i]]);
-        std::vector<Rational> lambda = one_dimensional_null_vector(sub);
+        normals.clear();
+        for (std::size_t i : s) {
+          sub.push_back(ks[order[i]]);
+          normals.push_back({sub.back().n[0], sub.back().n[1], sub.back().n[2]});
+        }
+        std::vector<Rational> lambda = one_dimensional_null_vector(normals);
         if (!farkas_certifies_empty(sub, lambda)) return false;
         InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda, {}, {}};
         for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
@@ -346,6 +466,7 @@ const char* infeasibility_kind_name(InfeasibilityKind kind) {
     case InfeasibilityKind::ChordTouchesBoundary: return "chord-touches-boundary";
     case InfeasibilityKind::EmptyLinkKernel: return "empty-link-kernel";
     case InfeasibilityKind::EdgeFanWraps: return "edge-fan-wraps";
+    case InfeasibilityKind::FreeEdgeLine: return "free-edge-line";
   }
   return "?";
 }
@@ -377,6 +498,11 @@ std::string describe(const InfeasibilityCertificate& c) {
              std::to_string(c.ring.front()) + " and " + std::to_string(c.ring.back()) +
              " lie in one half-plane of its line, so the tets from one to the other (" + ids(c.constraint_tets) +
              ") would turn a full circle";
+    case InfeasibilityKind::FreeEdgeLine:
+      s += "free edge " + ids(c.simplex) + ": the tets";
+      for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
+        s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
+      return s + " ask the line through its image to pass on one side of each fixed opposite edge, and no line does";
   }
   return s;
 }
@@ -453,6 +579,18 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
       return !points_equal(at(X, a), at(X, b)) &&
              same_half_plane(at(X, a), at(X, b), at(X, c.ring.front()), at(X, c.ring.back())) &&
              boundary_image_is_embedded(mesh, X);
+    }
+    case InfeasibilityKind::FreeEdgeLine: {
+      if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || locked[c.simplex[0]] || locked[c.simplex[1]] ||
+          c.constraint_tets.empty() || c.constraint_tets.size() != c.multipliers.size() || c.tet != c.constraint_tets[0])
+        return false;
+      std::vector<PluckerLine> lines;
+      for (std::uint32_t t : c.constraint_tets) {
+        std::uint32_t x = 0, y = 0;
+        if (!opposite_edge_oriented(mesh, t, c.simplex[0], c.simplex[1], &x, &y) || !locked[x] || !locked[y]) return false;
+        lines.push_back(plucker_line(at(X, x), at(X, y)));
+      }
+      return gordan_certifies_no_line(lines, c.multipliers);
     }
     case InfeasibilityKind::EmptyLinkKernel: {
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||

@@ -11,8 +11,10 @@ namespace volmap {
 namespace {
 
 // maximise c·x s.t. A x <= b, x >= 0 with b >= 0 (origin feasible). A is m×n row-major.
-// Returns false when unbounded or out of iterations; x receives the solution.
-bool simplex_max(int m, int n, std::vector<double>& A, std::vector<double>& b, std::vector<double> c, double* x) {
+// Returns false when unbounded or out of iterations; x receives the solution and, when given,
+// `duals` (m entries) the optimal dual values of the rows (>= 0, zero for a row with slack).
+bool simplex_max(int m, int n, std::vector<double>& A, std::vector<double>& b, std::vector<double> c, double* x,
+                 double* duals = nullptr) {
   std::vector<int> row_label(m), col_label(n);  // labels: 0..n-1 original vars, n.. slacks
   for (int j = 0; j < n; ++j) col_label[j] = j;
   for (int i = 0; i < m; ++i) row_label[i] = n + i;
@@ -59,6 +61,11 @@ bool simplex_max(int m, int n, std::vector<double>& A, std::vector<double>& b, s
   for (int j = 0; j < n; ++j) x[j] = 0;
   for (int i = 0; i < m; ++i)
     if (row_label[i] < n) x[row_label[i]] = b[i];
+  if (duals) {
+    for (int i = 0; i < m; ++i) duals[i] = 0;
+    for (int j = 0; j < n; ++j)
+      if (col_label[j] >= n) duals[col_label[j] - n] = std::max(0.0, -c[j]);
+  }
   return true;
 }
 
@@ -120,6 +127,44 @@ bool chebyshev_point(const std::vector<double>& tri, double* q, double* slack) {
   if (!simplex_max(m, n, A, b, {0, 0, 0, 1}, x)) return false;
   *slack = x[3] - S0;
   for (int i = 0; i < 3; ++i) q[i] = lo[i] + x[i] * diag;
+  return true;
+}
+
+bool max_min_slack_in_box(const std::vector<double>& rows, int dim, double* x, double* slack, std::vector<double>* row_weights) {
+  if (dim <= 0 || rows.empty() || rows.size() % std::size_t(dim) != 0) return false;
+  // Shifted variables y = x + 1 in [0, 2] and s' = s + S0 >= 0, so that the origin is feasible:
+  // r·x >= s  ⇔  −r·y + s' <= −Σr + S0, with S0 larger than any |Σr| over the rows.
+  const std::size_t m0 = rows.size() / std::size_t(dim);
+  double S0 = 1.0;
+  for (std::size_t i = 0; i < m0; ++i) {
+    double sum = 0;
+    for (int j = 0; j < dim; ++j) sum += rows[i * std::size_t(dim) + std::size_t(j)];
+    S0 = std::max(S0, 1.0 + std::fabs(sum));
+  }
+  const int n = dim + 1;
+  std::vector<double> A, b;
+  A.reserve((m0 + std::size_t(n)) * std::size_t(n));
+  for (std::size_t i = 0; i < m0; ++i) {
+    double sum = 0;
+    for (int j = 0; j < dim; ++j) {
+      const double r = rows[i * std::size_t(dim) + std::size_t(j)];
+      A.push_back(-r);
+      sum += r;
+    }
+    A.push_back(1.0);
+    b.push_back(std::max(S0 - sum, 0.0));
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) A.push_back(i == j ? 1.0 : 0.0);
+    b.push_back(i < dim ? 2.0 : S0 + 1.0);
+  }
+  std::vector<double> c(static_cast<std::size_t>(n), 0.0), y(static_cast<std::size_t>(n));
+  c[std::size_t(dim)] = 1.0;
+  std::vector<double> duals(b.size());
+  if (!simplex_max(int(b.size()), n, A, b, c, y.data(), duals.data())) return false;
+  if (row_weights) row_weights->assign(duals.begin(), duals.begin() + std::ptrdiff_t(m0));
+  for (int j = 0; j < dim; ++j) x[j] = y[std::size_t(j)] - 1.0;
+  *slack = y[std::size_t(dim)] - S0;
   return true;
 }
 

@@ -36,6 +36,13 @@
 //                          tets around ab have disjoint wedges: at most 2π in all for an interior
 //                          edge, where the rest of its fan adds more, and less than the boundary's
 //                          dihedral angle (< 2π) for an edge of ∂M.
+//   FreeEdgeLine         — an edge uv with both vertices free and tets (u, v, x, y) of its star with x
+//                          and y locked, (x, y) ordered so that (u, v, x, y) is an even permutation of
+//                          the tet. orient3d(u, v, x, y) = −side(line(u,v), line(x,y)) (Plücker
+//                          coordinates, predicates_rational.hpp), so each tet asks the line through
+//                          u's and v's images to satisfy a strict inequality that is linear in its six
+//                          coordinates. Multipliers λ >= 0, not all zero, with Σ λ line(x, y) = 0
+//                          (Gordan) show that no line, and no pair of points, satisfies them all.
 // A certificate proves infeasibility at this connectivity only; refinement may still admit a map.
 #pragma once
 
@@ -49,13 +56,16 @@
 
 namespace volmap {
 
-enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel, EdgeFanWraps };
+enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel, EdgeFanWraps,
+                                FreeEdgeLine };
 
 struct InfeasibilityCertificate {
   InfeasibilityKind kind = InfeasibilityKind::FixedTet;
   std::vector<std::uint32_t> simplex;  // the tet (4 ids), edge (2), face (3) or free vertex (1)
   std::uint32_t tet = 0;               // a tet that cannot be strictly positive (one of the constraints' tets)
   // EmptyLinkKernel: the tets whose link faces form the constraint set and their exact multipliers.
+  // FreeEdgeLine: the tets around the free edge whose opposite edges form the constraint set, and
+  // their exact multipliers.
   std::vector<std::uint32_t> constraint_tets;
   std::vector<Rational> multipliers;
   // ChordTouchesBoundary: the corners of the face of ∂M whose image the chord's image meets.
@@ -74,6 +84,9 @@ struct InfeasibilityOptions {
   // Free vertices with at least this many link faces whose vertices are all locked are tried for
   // an EmptyLinkKernel certificate (their kernel LP first, in double).
   std::size_t min_fixed_link_faces = 2;
+  // Edges between free vertices with at least this many tets whose opposite edge is locked are
+  // tried for a FreeEdgeLine certificate (the LP over the line's coordinates first, in double).
+  std::size_t min_fixed_opposite_edges = 2;
 };
 
 // Searches every kind above; each certificate returned has passed verify_certificate. Throws

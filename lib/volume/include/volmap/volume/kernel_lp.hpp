@@ -6,7 +6,8 @@
 // The LP maximises s subject to n̂_F·(q − a_F) >= s for every triangle F and q in the triangles'
 // bounding box, in a frame centred at the box corner and scaled by 1/diagonal: 4 variables, a dense
 // condensed-tableau simplex with Bland's rule. A double result is never trusted alone: a kernel
-// point is returned only after the exact check.
+// point is returned only after the exact check. The same simplex also solves the homogeneous
+// max-min LP of max_min_slack_in_box (any dimension), used to pick rows for exact certificates.
 #pragma once
 
 #include <volmap/predicates.hpp>
@@ -32,5 +33,14 @@ bool verified_inside(const FpEnvironmentScope& fp, const std::vector<double>& tr
 // Returns false when no verified point was found.
 bool strict_kernel_point(const FpEnvironmentScope& fp, const std::vector<double>& triangles, double* q);
 bool strict_kernel_point(const std::vector<double>& triangles, double* q);
+
+// The same simplex on a homogeneous system: maximise s subject to r_i·x >= s for every row r_i
+// (`rows`: dim doubles each, best normalised by the caller) and −1 <= x_j <= 1, s <= 1. Returns
+// false when the LP could not be solved; otherwise x (dim doubles) and *slack = s (> 0 iff the
+// double LP found an x strictly on the positive side of every row), and, when given, the rows'
+// optimal dual values in *row_weights (>= 0). When the optimum is s = 0 with x inside the box, the
+// rows with positive weight are a nonnegative combination near zero (Gordan): the rows to try first.
+bool max_min_slack_in_box(const std::vector<double>& rows, int dim, double* x, double* slack,
+                          std::vector<double>* row_weights = nullptr);
 
 }  // namespace volmap
