@@ -1,8 +1,10 @@
-// plucker_line / side / gordan_certifies_no_line against independent oracles: the side product of
-// two lines agrees with −orient3d of their four points at random grid points (the exact orient3d
-// predicate decides); a certificate is accepted for a ring of segments that no line sees all on one
-// side by construction (a bow-tie, multipliers derived by hand) and refused for every multiplier
-// vector tried when a witness line is strictly on the required side of all of them.
+// plucker_line / side / gordan_certifies_no_line / cone_holds_no_line against independent oracles:
+// the side product of two lines agrees with −orient3d of their four points at random grid points (the
+// exact orient3d predicate decides); a certificate is accepted for a ring of segments that no line
+// sees all on one side by construction (a bow-tie, multipliers derived by hand) and refused for every
+// multiplier vector tried when a witness line is strictly on the required side of all of them; a thin
+// cone around a six-vector off the Klein quadric holds no line (checked at points built inside it by
+// hand), a wide one holds a line given by hand.
 #include <doctest/doctest.h>
 #include <volmap/predicates_rational.hpp>
 
@@ -66,4 +68,56 @@ TEST_CASE("gordan_certifies_no_line: a bow-tie ring in a plane, and a convex rin
     for (auto& x : lambda) x = g(rng);
     CHECK_FALSE(volmap::gordan_certifies_no_line(lines, lambda));
   }
+}
+
+namespace {
+// The cone {L : |w_i·L| <= delta (L0·L)} around L0 = (1,0,0, 1,0,0) (d·m = 1: not a line), w_i the
+// five unit directions orthogonal to L0 (up to scale): rows delta·L0 ± w_i.
+std::vector<volmap::SixVector> cone_around_l0(const Rational& delta) {
+  const volmap::SixVector l0 = {1, 0, 0, 1, 0, 0};
+  const volmap::SixVector w[5] = {{0, 1, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0}, {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}, {1, 0, 0, -1, 0, 0}};
+  std::vector<volmap::SixVector> rows;
+  for (const auto& wi : w)
+    for (int sign : {1, -1}) {
+      volmap::SixVector r;
+      for (std::size_t j = 0; j < 6; ++j) r[j] = delta * l0[j] + sign * wi[j];
+      rows.push_back(r);
+    }
+  return rows;
+}
+Rational klein_form(const volmap::SixVector& l) { return 2 * (l[0] * l[3] + l[1] * l[4] + l[2] * l[5]); }
+bool strictly_inside(const std::vector<volmap::SixVector>& rows, const volmap::SixVector& l) {
+  for (const auto& r : rows) {
+    Rational s = 0;
+    for (std::size_t j = 0; j < 6; ++j) s += r[j] * l[j];
+    if (s <= 0) return false;
+  }
+  return true;
+}
+}  // namespace
+
+TEST_CASE("cone_holds_no_line: a thin cone off the Klein quadric, a wide one through a line, degenerate rows") {
+  const auto thin = cone_around_l0(Rational(1, 10));
+  CHECK(volmap::cone_holds_no_line(thin));
+  // Oracle: points L0 + Σ t_i w_i with |t_i| < 1/20 are inside (by construction) and off the quadric.
+  std::mt19937 rng(2);
+  std::uniform_int_distribution<int> g(-49, 49);
+  for (int it = 0; it < 300; ++it) {
+    const Rational t[5] = {Rational(g(rng), 1000), Rational(g(rng), 1000), Rational(g(rng), 1000), Rational(g(rng), 1000),
+                           Rational(g(rng), 1000)};
+    const volmap::SixVector l = {1 + t[4], t[0], t[1], 1 - t[4], t[2], t[3]};
+    REQUIRE(strictly_inside(thin, l));
+    CHECK(klein_form(l) > 0);
+  }
+  // The x axis, (d, m) = (1,0,0, 0,0,0), is a line strictly inside the wide cone: no certificate.
+  const auto wide = cone_around_l0(Rational(3));
+  const volmap::SixVector x_axis = {1, 0, 0, 0, 0, 0};
+  REQUIRE(strictly_inside(wide, x_axis));
+  CHECK(klein_form(x_axis) == 0);
+  CHECK_FALSE(volmap::cone_holds_no_line(wide));
+  // Rank below six (the cone holds a linear subspace), or too few rows: no claim.
+  std::vector<volmap::SixVector> flat = thin;
+  for (auto& r : flat) r[5] = 0;
+  CHECK_FALSE(volmap::cone_holds_no_line(flat));
+  CHECK_FALSE(volmap::cone_holds_no_line({thin.begin(), thin.begin() + 5}));
 }

@@ -418,17 +418,30 @@ TEST_CASE("a free edge over a bow-tie ring of fixed vertices: an exact free-edge
   CHECK(has_kind(r.infeasibility, InfeasibilityKind::FreeEdgeLine));
 }
 
+namespace {
+// A G1 case at fixed connectivity: the source, its locked (boundary) vertices and their images.
+struct G1FixedCase {
+  volmap::TetMeshData mesh;
+  std::vector<std::uint8_t> locked;
+  std::vector<double> target;
+  G1FixedCase(const std::filesystem::path& mesh_path, const std::filesystem::path& map_path)
+      : mesh(volmap::read_medit(mesh_path.string())), locked(mesh.num_vertices(), 0), target(3 * mesh.num_vertices(), 0.0) {
+    const volmap::BoundaryMap map = volmap::read_boundary_map(map_path.string());
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      locked[map.vids[i]] = 1;
+      std::copy_n(&map.xyz[3 * i], 3, &target[3 * map.vids[i]]);
+    }
+  }
+};
+}  // namespace
+
 TEST_CASE("bone onto the cube at fixed connectivity: a free edge that no line can serve (G1 data)") {
   VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/bone.mesh");
   VOLMAP_REQUIRE_DATA(map_path, "volmap/G1_cube/bone_cube.txt");
-  const volmap::TetMeshData m = volmap::read_medit(mesh_path.string());
-  const volmap::BoundaryMap map = volmap::read_boundary_map(map_path.string());
-  std::vector<std::uint8_t> locked(m.num_vertices(), 0);
-  std::vector<double> X(3 * m.num_vertices(), 0.0);
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    locked[map.vids[i]] = 1;
-    std::copy_n(&map.xyz[3 * i], 3, &X[3 * map.vids[i]]);
-  }
+  const G1FixedCase g(mesh_path, map_path);
+  const volmap::TetMeshData& m = g.mesh;
+  const std::vector<double>& X = g.target;
+  const std::vector<std::uint8_t>& locked = g.locked;
   const volmap::TetMesh mesh(m);
   const auto cs = volmap::find_local_infeasibility(mesh, locked, X);
   // The only certificate: no fixed simplex, no fixed link is infeasible on its own.
@@ -438,4 +451,25 @@ TEST_CASE("bone onto the cube at fixed connectivity: a free edge that no line ca
   CHECK(it->kind == InfeasibilityKind::FreeEdgeLine);
   CHECK(oracle_free_edge_line(m, X, *it));
   CHECK(volmap::verify_certificate(mesh, locked, X, *it));
+}
+
+TEST_CASE("ramses onto the pyramid at fixed connectivity: the six-vectors a free edge needs hold no line (G1 data)") {
+  // The line LP over the edge's constraints has a positive optimum (about 1e-7), so no Gordan
+  // multipliers exist; the cone of those six-vectors lies off the Klein quadric.
+  VOLMAP_REQUIRE_DATA(mesh_path, "volmap/G1/ramses.mesh");
+  VOLMAP_REQUIRE_DATA(map_path, "volmap/G1_pyr/ramses_pyr.txt");
+  const G1FixedCase g(mesh_path, map_path);
+  const volmap::TetMesh mesh(g.mesh);
+  const auto cs = volmap::find_local_infeasibility(mesh, g.locked, g.target);
+  CHECK_FALSE(has_kind(cs, InfeasibilityKind::FreeEdgeLine));
+  const volmap::InfeasibilityCertificate* found = first_of_kind(cs, InfeasibilityKind::FreeEdgeCone);
+  REQUIRE(found != nullptr);
+  const volmap::InfeasibilityCertificate& c = *found;
+  INFO(volmap::describe(c));
+  CHECK(std::set<std::uint32_t>(c.simplex.begin(), c.simplex.end()) == std::set<std::uint32_t>{16950, 17399});
+  CHECK(volmap::verify_certificate(mesh, g.locked, g.target, c));
+  // Five constraint tets leave a cone with a linear subspace in it: refused.
+  volmap::InfeasibilityCertificate five = c;
+  five.constraint_tets.resize(5);
+  CHECK_FALSE(volmap::verify_certificate(mesh, g.locked, g.target, five));
 }

@@ -174,6 +174,12 @@ bool ordered_fan(const TetMesh& mesh, EdgeId e, std::uint32_t a, std::uint32_t b
   return true;
 }
 
+// The row r with r·(d, m) = −side(line, L) for a line L = (d, m): the tet (u, v, x, y) is positive iff
+// r·line(u, v) > 0 for r = cone_row(line(x, y)).
+SixVector cone_row(const PluckerLine& xy) {
+  return {-xy.m[0], -xy.m[1], -xy.m[2], -xy.d[0], -xy.d[1], -xy.d[2]};
+}
+
 class CertificateSearch {
  public:
   CertificateSearch(const TetMesh& mesh, const std::vector<std::uint8_t>& locked, const std::vector<double>& X,
@@ -358,7 +364,7 @@ class CertificateSearch {
     double line[6], slack = 0;
     std::vector<double> weight;
     const bool solved = max_min_slack_in_box(rows, 6, line, &slack, &weight);
-    if (solved && slack > 1e-9) return;  // a line clearly satisfies them all
+    if (solved && slack > kThinCone) return;  // a line, or a wide cone of six-vectors, satisfies them all
     // The rows the LP's dual weighs most first (its support is the Gordan set when the double LP is
     // right), then the rows tightest at its optimum.
     std::vector<std::size_t> order(m);
@@ -373,6 +379,17 @@ class CertificateSearch {
     }
     std::vector<PluckerLine> lines(m);
     for (std::size_t j = 0; j < m; ++j) lines[j] = plucker_line(at(X_, opposite[j].x), at(X_, opposite[j].y));
+    if ((!solved || slack <= 1e-9) && gordan_subsets(u, v, opposite, order, lines)) return;
+    if (solved) cone_without_lines(u, v, opposite, order, lines);
+  }
+
+  // Threshold of the line LP's optimum (rows and box normalised) below which the cone test runs.
+  static constexpr double kThinCone = 1e-5;
+  static constexpr std::size_t kMaxConeRows = 10;  // C(10, 5) = 252 exact eliminations at most
+
+  bool gordan_subsets(std::uint32_t u, std::uint32_t v, const std::vector<OppositeEdge>& opposite,
+                      const std::vector<std::size_t>& order, const std::vector<PluckerLine>& lines) {
+    const std::size_t m = opposite.size();
     std::vector<PluckerLine> sub;
     std::vector<std::vector<Rational>> columns;
     for (std::size_t pool : {std::min<std::size_t>(m, 8), m <= 11 ? m : std::size_t(0)}) {
@@ -392,8 +409,24 @@ class CertificateSearch {
         keep(std::move(c));
         return true;
       });
-      if (hit || pool == m) break;
+      if (hit) return true;
+      if (pool == m) break;
     }
+    return false;
+  }
+
+  // The cone test on the rows first in `order` (the tightest at the LP optimum), at most
+  // kMaxConeRows of them: fewer rows give a wider cone, so a certificate on them holds for all.
+  void cone_without_lines(std::uint32_t u, std::uint32_t v, const std::vector<OppositeEdge>& opposite,
+                          const std::vector<std::size_t>& order, const std::vector<PluckerLine>& lines) {
+    const std::size_t n = std::min(opposite.size(), kMaxConeRows);
+    std::vector<SixVector> rows(n);
+    InfeasibilityCertificate c{InfeasibilityKind::FreeEdgeCone, {u, v}, opposite[order[0]].tet, {}, {}, {}, {}};
+    for (std::size_t i = 0; i < n; ++i) {
+      rows[i] = cone_row(lines[order[i]]);
+      c.constraint_tets.push_back(opposite[order[i]].tet);
+    }
+    if (cone_holds_no_line(rows)) keep(std::move(c));
   }
 
   // The kernel LP bounds its point by the triangles' bounding box, which is flat when the faces
@@ -467,6 +500,7 @@ const char* infeasibility_kind_name(InfeasibilityKind kind) {
     case InfeasibilityKind::EmptyLinkKernel: return "empty-link-kernel";
     case InfeasibilityKind::EdgeFanWraps: return "edge-fan-wraps";
     case InfeasibilityKind::FreeEdgeLine: return "free-edge-line";
+    case InfeasibilityKind::FreeEdgeCone: return "free-edge-cone";
   }
   return "?";
 }
@@ -503,6 +537,10 @@ std::string describe(const InfeasibilityCertificate& c) {
       for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
         s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
       return s + " ask the line through its image to pass on one side of each fixed opposite edge, and no line does";
+    case InfeasibilityKind::FreeEdgeCone:
+      return s + "free edge " + ids(c.simplex) + ": the tets " + ids(c.constraint_tets) +
+             " ask the line through its image to pass on one side of each fixed opposite edge; the six-vectors that do form a "
+             "cone off the Klein quadric, which holds no line";
   }
   return s;
 }
@@ -580,9 +618,12 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
              same_half_plane(at(X, a), at(X, b), at(X, c.ring.front()), at(X, c.ring.back())) &&
              boundary_image_is_embedded(mesh, X);
     }
-    case InfeasibilityKind::FreeEdgeLine: {
+    case InfeasibilityKind::FreeEdgeLine:
+    case InfeasibilityKind::FreeEdgeCone: {
+      const bool cone = c.kind == InfeasibilityKind::FreeEdgeCone;
       if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || locked[c.simplex[0]] || locked[c.simplex[1]] ||
-          c.constraint_tets.empty() || c.constraint_tets.size() != c.multipliers.size() || c.tet != c.constraint_tets[0])
+          c.constraint_tets.empty() || c.constraint_tets.size() != (cone ? c.constraint_tets.size() : c.multipliers.size()) ||
+          (cone && !c.multipliers.empty()) || c.tet != c.constraint_tets[0])
         return false;
       std::vector<PluckerLine> lines;
       for (std::uint32_t t : c.constraint_tets) {
@@ -590,7 +631,10 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
         if (!opposite_edge_oriented(mesh, t, c.simplex[0], c.simplex[1], &x, &y) || !locked[x] || !locked[y]) return false;
         lines.push_back(plucker_line(at(X, x), at(X, y)));
       }
-      return gordan_certifies_no_line(lines, c.multipliers);
+      if (!cone) return gordan_certifies_no_line(lines, c.multipliers);
+      std::vector<SixVector> rows;
+      for (const PluckerLine& l : lines) rows.push_back(cone_row(l));
+      return cone_holds_no_line(rows);
     }
     case InfeasibilityKind::EmptyLinkKernel: {
       if (c.simplex.size() != 1 || locked[c.simplex[0]] || c.constraint_tets.empty() ||

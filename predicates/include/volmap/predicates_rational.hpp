@@ -60,4 +60,15 @@ Rational side(const PluckerLine& a, const PluckerLine& b);
 // such λ exist exactly when that linear system has no solution). Decided in exact rationals.
 bool gordan_certifies_no_line(const std::vector<PluckerLine>& lines, const std::vector<Rational>& multipliers);
 
+// --- polyhedral cones of six-vectors that hold no line --------------------------------------------
+// `rows` r_j define the closed cone C = {L : r_j·L >= 0 for every j} of six-vectors L = (d, m). The
+// Klein form K(a, b) = d_a·m_b + d_b·m_a vanishes on a line's Plücker coordinates: K(L, L) = 0, d != 0.
+// True iff the rows have rank six (C is pointed) and K(a, b) has one strict sign for every pair
+// (a = b included) of C's extreme rays. Those are enumerated exactly: the one-dimensional solutions
+// of five independent rows held at zero that satisfy every row. K(L, L) then has that sign on C
+// minus 0, since L is a nonnegative combination of the rays, so no line's coordinates lie in C
+// (true as well when C = {0}). Cost: one exact elimination per five rows, so keep the rows few.
+using SixVector = std::array<Rational, 6>;
+bool cone_holds_no_line(const std::vector<SixVector>& rows);
+
 }  // namespace volmap

@@ -43,6 +43,11 @@
 //                          u's and v's images to satisfy a strict inequality that is linear in its six
 //                          coordinates. Multipliers λ >= 0, not all zero, with Σ λ line(x, y) = 0
 //                          (Gordan) show that no line, and no pair of points, satisfies them all.
+//   FreeEdgeCone         — the same constraints on the line uv, when they admit six-vectors but only
+//                          in a thin cone off the Klein quadric: the closed cone {L : −side(L, xy)
+//                          >= 0 for the constraint tets} is pointed and the Klein form has one
+//                          strict sign on every pair of its extreme rays (cone_holds_no_line), so it
+//                          holds no line's coordinates and no placement of u and v.
 // A certificate proves infeasibility at this connectivity only; refinement may still admit a map.
 #pragma once
 
@@ -57,7 +62,7 @@
 namespace volmap {
 
 enum class InfeasibilityKind { FixedTet, CoincidentEdge, DegenerateFace, ChordTouchesBoundary, EmptyLinkKernel, EdgeFanWraps,
-                                FreeEdgeLine };
+                                FreeEdgeLine, FreeEdgeCone };
 
 struct InfeasibilityCertificate {
   InfeasibilityKind kind = InfeasibilityKind::FixedTet;
@@ -65,7 +70,7 @@ struct InfeasibilityCertificate {
   std::uint32_t tet = 0;               // a tet that cannot be strictly positive (one of the constraints' tets)
   // EmptyLinkKernel: the tets whose link faces form the constraint set and their exact multipliers.
   // FreeEdgeLine: the tets around the free edge whose opposite edges form the constraint set, and
-  // their exact multipliers.
+  // their exact multipliers. FreeEdgeCone: those tets (no multipliers).
   std::vector<std::uint32_t> constraint_tets;
   std::vector<Rational> multipliers;
   // ChordTouchesBoundary: the corners of the face of ∂M whose image the chord's image meets.
