@@ -1,6 +1,6 @@
 // klein_cone.cpp — exact test that a pointed polyhedral cone of six-vectors holds no line's Plücker
 // coordinates (see predicates_rational.hpp): its extreme rays by exact elimination, then the sign
-// of the Klein form on every pair of them. Exact rationals only.
+// of the Klein form on every pair of them (docs/predicates.md §9). Exact rationals only.
 #include <volmap/predicates_rational.hpp>
 
 #include <algorithm>

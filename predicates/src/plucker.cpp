@@ -1,5 +1,6 @@
 // plucker.cpp — lines in Plücker coordinates and the exact check of a Gordan certificate that no
-// line lies on the required side of all of them (see predicates_rational.hpp). Exact rationals only.
+// line lies on the required side of all of them (predicates_rational.hpp, docs/predicates.md §9).
+// Exact rationals only.
 #include <volmap/predicates_rational.hpp>
 
 namespace volmap {
