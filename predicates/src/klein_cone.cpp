@@ -4,7 +4,6 @@
 #include <volmap/predicates_rational.hpp>
 
 #include <algorithm>
-#include <numeric>
 
 namespace volmap {
 

@@ -320,7 +320,8 @@ class CertificateSearch {
     std::uint32_t tet, x, y;
   };
 
-  // Edges between two free vertices whose star has tets with a locked opposite edge (FreeEdgeLine).
+  // Edges between two free vertices whose star has tets with a locked opposite edge (FreeEdgeLine,
+  // FreeEdgeCone).
   void free_edge_lines() {
     std::vector<OppositeEdge> opposite;
     for (std::uint32_t e = 0; e < mesh_.num_edges() && !full(); ++e) {
@@ -336,10 +337,9 @@ class CertificateSearch {
     }
   }
 
-  // The LP over the six coordinates of the line uv (double; rows normalised, in a frame centred at
-  // the locked points) decides whether to look: each tet asks side(uv, xy) < 0. The rows tightest at
-  // its optimum are tried first, in subsets of up to seven (Carathéodory: a minimal Gordan set in six
-  // unknowns has at most seven members), each with the one-dimensional rational null vector.
+  // The max-min LP over the six coordinates of the line uv (double; rows normalised, in a frame
+  // centred at the locked points; each tet asks side(uv, xy) < 0) decides whether to look and where:
+  // an optimum at most kGordanSlack gets the Gordan subsets, one up to kThinCone the cone test.
   void try_free_edge(std::uint32_t u, std::uint32_t v, const std::vector<OppositeEdge>& opposite) {
     const std::size_t m = opposite.size();
     double centre[3] = {0, 0, 0};
@@ -379,14 +379,19 @@ class CertificateSearch {
     }
     std::vector<PluckerLine> lines(m);
     for (std::size_t j = 0; j < m; ++j) lines[j] = plucker_line(at(X_, opposite[j].x), at(X_, opposite[j].y));
-    if ((!solved || slack <= 1e-9) && gordan_subsets(u, v, opposite, order, lines)) return;
+    if ((!solved || slack <= kGordanSlack) && gordan_subsets(u, v, opposite, order, lines)) return;
     if (solved) cone_without_lines(u, v, opposite, order, lines);
   }
 
-  // Threshold of the line LP's optimum (rows and box normalised) below which the cone test runs.
+  // Thresholds of the line LP's optimum (rows and box normalised): Gordan multipliers are looked for
+  // below the first, the cone test runs below the second.
+  static constexpr double kGordanSlack = 1e-9;
   static constexpr double kThinCone = 1e-5;
   static constexpr std::size_t kMaxConeRows = 10;  // C(10, 5) = 252 exact eliminations at most
 
+  // Subsets of up to seven rows (Carathéodory: a minimal Gordan set in six unknowns has at most seven
+  // members), first in `order` first, each with the one-dimensional rational null vector. True when
+  // a certificate was kept.
   bool gordan_subsets(std::uint32_t u, std::uint32_t v, const std::vector<OppositeEdge>& opposite,
                       const std::vector<std::size_t>& order, const std::vector<PluckerLine>& lines) {
     const std::size_t m = opposite.size();
