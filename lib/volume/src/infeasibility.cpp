@@ -516,6 +516,12 @@ std::string describe(const InfeasibilityCertificate& c) {
     for (std::uint32_t x : v) s += (s.empty() ? "" : " ") + std::to_string(x);
     return s;
   };
+  auto weighted_tets = [&c] {  // " t (x λ)" per constraint tet
+    std::string w;
+    for (std::size_t j = 0; j < c.constraint_tets.size() && j < c.multipliers.size(); ++j)
+      w += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
+    return w;
+  };
   std::string s = std::string(infeasibility_kind_name(c.kind)) + ": ";
   switch (c.kind) {
     case InfeasibilityKind::FixedTet:
@@ -528,20 +534,15 @@ std::string describe(const InfeasibilityCertificate& c) {
       return s + "the image of the interior edge between fixed vertices " + ids(c.simplex) + " (tet " + std::to_string(c.tet) +
              ") meets the image of the boundary face " + ids(c.boundary_face);
     case InfeasibilityKind::EmptyLinkKernel:
-      s += "free vertex " + ids(c.simplex) + ": the fixed link faces of tets";
-      for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
-        s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
-      return s + " have no common strict inner side";
+      return s + "free vertex " + ids(c.simplex) + ": the fixed link faces of tets" + weighted_tets() + " have no common strict inner side";
     case InfeasibilityKind::EdgeFanWraps:
       return s + "around the edge between fixed vertices " + ids(c.simplex) + ", the fixed ring vertices " +
              std::to_string(c.ring.front()) + " and " + std::to_string(c.ring.back()) +
              " lie in one half-plane of its line, so the tets from one to the other (" + ids(c.constraint_tets) +
              ") would turn a full circle";
     case InfeasibilityKind::FreeEdgeLine:
-      s += "free edge " + ids(c.simplex) + ": the tets";
-      for (std::size_t j = 0; j < c.constraint_tets.size(); ++j)
-        s += " " + std::to_string(c.constraint_tets[j]) + " (x " + c.multipliers[j].str() + ")";
-      return s + " ask the line through its image to pass on one side of each fixed opposite edge, and no line does";
+      return s + "free edge " + ids(c.simplex) + ": the tets" + weighted_tets() +
+             " ask the line through its image to pass on one side of each fixed opposite edge, and no line does";
     case InfeasibilityKind::FreeEdgeCone:
       return s + "free edge " + ids(c.simplex) + ": the tets " + ids(c.constraint_tets) +
              " ask the line through its image to pass on one side of each fixed opposite edge; the six-vectors that do form a "
