@@ -1,5 +1,6 @@
 // libFuzzer target: the batch orientation predicate on arbitrary bit patterns. Non-finite input must
-// be reported (!ok), never signed; finite input must agree with the exact rational evaluation.
+// be reported (!ok), never signed; finite input must agree with the exact rational evaluation, and
+// the Plücker side product of the lines (p0,p1) and (p2,p3) must have the opposite sign.
 #include <volmap/predicates_rational.hpp>
 
 #include <cmath>
@@ -32,6 +33,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (int c = 0; c < 3; ++c) p[k][c] = volmap::Rational(xyz[3 * (t + k) + c]);
     if (volmap::orient3d(p[0], p[1], p[2], p[3]) != signs[t]) __builtin_trap();
     if (volmap::orient3d(&xyz[3 * t], &xyz[3 * t + 3], &xyz[3 * t + 6], &xyz[3 * t + 9]) != signs[t]) __builtin_trap();
+    const volmap::Rational side = volmap::side(volmap::plucker_line(&xyz[3 * t], &xyz[3 * t + 3]),
+                                               volmap::plucker_line(&xyz[3 * t + 6], &xyz[3 * t + 9]));
+    if ((side > 0 ? 1 : side < 0 ? -1 : 0) != -signs[t]) __builtin_trap();
   }
   return 0;
 }
