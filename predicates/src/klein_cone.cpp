@@ -30,33 +30,13 @@ std::size_t rank_of(std::vector<SixVector> m) {
 // The null vector of five rows when their rank is five (false otherwise), scaled so that its first
 // nonzero entry is ±1.
 bool null_vector_of_five(const std::array<const SixVector*, 5>& rows, SixVector& x) {
-  std::array<SixVector, 5> m;
-  for (int i = 0; i < 5; ++i) m[std::size_t(i)] = *rows[std::size_t(i)];
-  std::array<int, 5> pivot{};
-  std::size_t rank = 0;
-  for (int c = 0; c < 6 && rank < 5; ++c) {
-    std::size_t p = rank;
-    while (p < 5 && m[p][std::size_t(c)] == 0) ++p;
-    if (p == 5) continue;
-    std::swap(m[p], m[rank]);
-    const Rational inv = Rational(1) / m[rank][std::size_t(c)];
-    for (Rational& v : m[rank]) v *= inv;
-    for (std::size_t r = 0; r < 5; ++r)
-      if (r != rank && m[r][std::size_t(c)] != 0) {
-        const Rational f = m[r][std::size_t(c)];
-        for (std::size_t j = 0; j < 6; ++j) m[r][j] -= f * m[rank][j];
-      }
-    pivot[rank++] = c;
-  }
-  if (rank != 5) return false;
-  int free_col = 0;
-  while (std::find(pivot.begin(), pivot.end(), free_col) != pivot.end()) ++free_col;
-  x.fill(Rational(0));
-  x[std::size_t(free_col)] = 1;
-  for (std::size_t r = 0; r < 5; ++r) x[std::size_t(pivot[r])] = -m[r][std::size_t(free_col)];
-  const auto first = std::find_if(x.begin(), x.end(), [](const Rational& v) { return v != 0; });
+  std::vector<std::vector<Rational>> m;
+  for (const SixVector* r : rows) m.emplace_back(r->begin(), r->end());
+  const std::vector<Rational> n = one_dimensional_null_vector(std::move(m));
+  if (n.empty()) return false;
+  const auto first = std::find_if(n.begin(), n.end(), [](const Rational& v) { return v != 0; });
   const Rational scale = abs(*first);
-  for (Rational& v : x) v /= scale;
+  for (std::size_t i = 0; i < 6; ++i) x[i] = n[i] / scale;
   return true;
 }
 

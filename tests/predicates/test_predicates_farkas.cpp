@@ -1,10 +1,15 @@
-// strict_halfspace / farkas_certifies_empty against independent oracles: the half-space agrees with
-// orient3d's sign at random points; a certificate is accepted for systems that are empty by
-// construction and refused for every multiplier vector when a witness point is strictly inside all
-// half-spaces (checked exactly with orient3d), since Σλ(n·x − d) > 0 contradicts Σλn = 0, Σλd >= 0.
+// strict_halfspace / farkas_certifies_empty / one_dimensional_null_vector against independent
+// oracles: the half-space agrees with orient3d's sign at random points; a certificate is accepted for
+// systems that are empty by construction and refused for every multiplier vector when a witness point
+// is strictly inside all half-spaces (checked exactly with orient3d), since Σλ(n·x − d) > 0
+// contradicts Σλn = 0, Σλd >= 0; the null vector solves M x = 0 exactly and exists exactly when the
+// oracle's rank leaves nullity one.
 #include <doctest/doctest.h>
 #include <volmap/predicates_rational.hpp>
 
+#include "../../predicates/testing/oracle.hpp"
+
+#include <algorithm>
 #include <array>
 #include <random>
 #include <vector>
@@ -83,4 +88,48 @@ TEST_CASE("farkas_certifies_empty never certifies a system with a strictly inter
     }
   }
   CHECK(systems == 400);
+}
+
+TEST_CASE("one_dimensional_null_vector: M x = 0 exactly on random integer matrices, empty when the nullity is not one") {
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> g(-9, 9);
+  int found = 0;
+  for (int it = 0; it < 300; ++it) {
+    const std::size_t rows = 1 + std::size_t(it % 6), cols = rows + 1;
+    std::vector<std::vector<Rational>> m(rows, std::vector<Rational>(cols));
+    for (auto& r : m)
+      for (auto& v : r) v = Rational(g(rng), 1 + (g(rng) + 9) % 4);
+    if (it % 5 == 0 && rows >= 2) m[1] = m[0];  // rank drops: nullity two
+    const std::vector<Rational> x = volmap::one_dimensional_null_vector(m);
+    // Oracle: the nullity from the rank, by elimination on a copy with oracle rationals.
+    std::vector<std::vector<volmap_oracle::Q>> a(rows, std::vector<volmap_oracle::Q>(cols));
+    for (std::size_t r = 0; r < rows; ++r)
+      for (std::size_t c = 0; c < cols; ++c) a[r][c] = volmap_oracle::Q(m[r][c]);
+    std::size_t rank = 0;
+    for (std::size_t c = 0; c < cols && rank < rows; ++c) {
+      std::size_t p = rank;
+      while (p < rows && a[p][c] == 0) ++p;
+      if (p == rows) continue;
+      std::swap(a[p], a[rank]);
+      for (std::size_t r = rank + 1; r < rows; ++r) {
+        const volmap_oracle::Q f = a[r][c] / a[rank][c];
+        for (std::size_t j = 0; j < cols; ++j) a[r][j] -= f * a[rank][j];
+      }
+      ++rank;
+    }
+    if (cols - rank != 1) {
+      CHECK(x.empty());
+      continue;
+    }
+    REQUIRE(x.size() == cols);
+    CHECK(std::any_of(x.begin(), x.end(), [](const Rational& v) { return v != 0; }));
+    for (const auto& r : m) {
+      Rational s = 0;
+      for (std::size_t c = 0; c < cols; ++c) s += r[c] * x[c];
+      CHECK(s == 0);
+    }
+    ++found;
+  }
+  CHECK(found > 100);
+  CHECK(volmap::one_dimensional_null_vector({}).empty());
 }

@@ -19,40 +19,15 @@ namespace volmap {
 
 namespace {
 
-// The null vector of the dim×k matrix whose columns are `columns` (k vectors of dim entries), when the
-// null space has dimension one; scaled so that its entries are >= 0 when that is possible. Empty
-// otherwise.
-std::vector<Rational> one_dimensional_null_vector(const std::vector<std::vector<Rational>>& columns) {
-  const std::size_t k = columns.size();
-  if (k == 0) return {};
-  const std::size_t dim = columns[0].size();
-  std::vector<std::vector<Rational>> m(dim, std::vector<Rational>(k));
-  for (std::size_t r = 0; r < dim; ++r)
-    for (std::size_t c = 0; c < k; ++c) m[r][c] = columns[c][r];
-  std::vector<int> pivot_col;  // reduced row echelon form
-  std::size_t row = 0;
-  for (std::size_t c = 0; c < k && row < dim; ++c) {
-    std::size_t p = row;
-    while (p < dim && m[p][c] == 0) ++p;
-    if (p == dim) continue;
-    std::swap(m[p], m[row]);
-    const Rational inv = Rational(1) / m[row][c];
-    for (std::size_t j = 0; j < k; ++j) m[row][j] *= inv;
-    for (std::size_t r = 0; r < dim; ++r)
-      if (r != row && m[r][c] != 0) {
-        const Rational f = m[r][c];
-        for (std::size_t j = 0; j < k; ++j) m[r][j] -= f * m[row][j];
-      }
-    pivot_col.push_back(int(c));
-    ++row;
-  }
-  if (pivot_col.size() + 1 != k) return {};
-  std::vector<std::uint8_t> is_pivot(k, 0);
-  for (int c : pivot_col) is_pivot[std::size_t(c)] = 1;
-  const std::size_t free_col = std::size_t(std::find(is_pivot.begin(), is_pivot.end(), 0) - is_pivot.begin());
-  std::vector<Rational> lambda(k, Rational(0));
-  lambda[free_col] = 1;
-  for (std::size_t r = 0; r < pivot_col.size(); ++r) lambda[std::size_t(pivot_col[r])] = -m[r][free_col];
+// Candidate multipliers for the vectors `columns` (each of one length): the one-dimensional null
+// vector of the matrix they are the columns of, negated when its entries are all <= 0. Empty when
+// the null space is not one-dimensional.
+std::vector<Rational> candidate_multipliers(const std::vector<std::vector<Rational>>& columns) {
+  if (columns.empty()) return {};
+  std::vector<std::vector<Rational>> rows(columns[0].size(), std::vector<Rational>(columns.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < columns.size(); ++c) rows[r][c] = columns[c][r];
+  std::vector<Rational> lambda = one_dimensional_null_vector(std::move(rows));
   if (std::all_of(lambda.begin(), lambda.end(), [](const Rational& x) { return x <= 0; }))
     for (Rational& x : lambda) x = -x;
   return lambda;
@@ -407,7 +382,7 @@ class CertificateSearch {
           sub.push_back(l);
           columns.push_back({l.d[0], l.d[1], l.d[2], l.m[0], l.m[1], l.m[2]});
         }
-        std::vector<Rational> lambda = one_dimensional_null_vector(columns);
+        std::vector<Rational> lambda = candidate_multipliers(columns);
         if (!gordan_certifies_no_line(sub, lambda)) return false;
         InfeasibilityCertificate c{InfeasibilityKind::FreeEdgeLine, {u, v}, opposite[order[s[0]]].tet, {}, lambda, {}, {}};
         for (std::size_t i : s) c.constraint_tets.push_back(opposite[order[i]].tet);
@@ -482,7 +457,7 @@ class CertificateSearch {
           sub.push_back(ks[order[i]]);
           normals.push_back({sub.back().n[0], sub.back().n[1], sub.back().n[2]});
         }
-        std::vector<Rational> lambda = one_dimensional_null_vector(normals);
+        std::vector<Rational> lambda = candidate_multipliers(normals);
         if (!farkas_certifies_empty(sub, lambda)) return false;
         InfeasibilityCertificate c{InfeasibilityKind::EmptyLinkKernel, {v}, tets[order[s[0]]], {}, lambda, {}, {}};
         for (std::size_t i : s) c.constraint_tets.push_back(tets[order[i]]);
@@ -626,10 +601,10 @@ bool verify_certificate(const TetMesh& mesh, const std::vector<std::uint8_t>& lo
     }
     case InfeasibilityKind::FreeEdgeLine:
     case InfeasibilityKind::FreeEdgeCone: {
-      const bool cone = c.kind == InfeasibilityKind::FreeEdgeCone;
+      const bool cone = c.kind == InfeasibilityKind::FreeEdgeCone;  // no multipliers; Gordan: one per tet
+      const bool multipliers_fit = cone ? c.multipliers.empty() : c.multipliers.size() == c.constraint_tets.size();
       if (c.simplex.size() != 2 || c.simplex[0] == c.simplex[1] || locked[c.simplex[0]] || locked[c.simplex[1]] ||
-          c.constraint_tets.empty() || c.constraint_tets.size() != (cone ? c.constraint_tets.size() : c.multipliers.size()) ||
-          (cone && !c.multipliers.empty()) || c.tet != c.constraint_tets[0])
+          c.constraint_tets.empty() || !multipliers_fit || c.tet != c.constraint_tets[0])
         return false;
       std::vector<PluckerLine> lines;
       for (std::uint32_t t : c.constraint_tets) {

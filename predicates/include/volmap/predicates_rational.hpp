@@ -43,6 +43,12 @@ StrictHalfspace strict_halfspace(const double* a, const double* b, const double*
 // no solution). False for mismatched sizes or an empty system. Decided in exact rationals.
 bool farkas_certifies_empty(const std::vector<StrictHalfspace>& halfspaces, const std::vector<Rational>& multipliers);
 
+// --- exact null vectors -----------------------------------------------------------------------------
+// The null vector x (M x = 0) of the matrix with these rows (all of one length), when the null space
+// has dimension one: the reduced row echelon form's free column set to 1. Empty otherwise (also for
+// no rows). Multiplier searches (Farkas, Gordan) take it as their candidate multipliers.
+std::vector<Rational> one_dimensional_null_vector(std::vector<std::vector<Rational>> rows);
+
 // --- lines in Plücker coordinates and Gordan certificates that no line meets them all ---------------
 // The line through p then q: direction d = q − p and moment m = p × q (exact rationals). Their
 // permuted inner product side(L, L') = d·m' + d'·m decides tets: orient3d(u, v, x, y) =
