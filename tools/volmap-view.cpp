@@ -119,169 +119,209 @@ ViewField field_from(const std::string& key, const std::string& label, double lo
   return f;
 }
 
+// Every option of the tool.
+struct Args {
+  std::vector<std::string> inputs;
+  std::string output = "view.html", energy, map_path, bundle_path, title;
+  double upper = 100;
+  bool json = false;
+};
+
+void add_options(CLI::App& app, Args& a) {
+  app.add_option("meshes", a.inputs, "<in.mesh> [<out.mesh>]: source mesh and, for a volume map, the mapped mesh "
+                                     "(.mesh, .vtk or .vtu)")
+      ->required()->expected(1, 2);
+  app.add_option("-o,--output", a.output, "HTML page to write")->capture_default_str();
+  app.add_option("--energy", a.energy, "field coloured at load: conformal, dirichlet, symdir, arap, mips3d, "
+                                       "quality_out, quality_in (default: mips3d for a volume map, quality_in otherwise)");
+  app.add_option("--map", a.map_path, "boundary map (vid x y z) of <in.mesh>: boundary-map mode without <out.mesh>");
+  app.add_option("--upper", a.upper, "upper clamp of the energies (VOLMAP metrics default 100, at least 6)")
+      ->capture_default_str()
+      ->check(volmap_tools::finite_range(6.0, 1e300));
+  app.add_option("--bundle", a.bundle_path, "viewer bundle (default: $VOLMAP_VIEWER_BUNDLE or " + default_bundle_path() + ")");
+  app.add_option("--title", a.title, "page title (default: the input file names)");
+  app.add_flag("--json", a.json, "print one JSON object (output, bytes, counts, timings)");
+}
+
+// The source mesh's part of the view: positions, tets, volumes (the flags follow per mode).
+ViewData source_view(const Args& a, const TetMeshData& source) {
+  ViewData view;
+  view.source_name = fs::path(a.inputs[0]).filename().string();
+  view.source_xyz = source.xyz;
+  view.tets = source.tets;
+  view.volume_in = volumes(source, source.xyz);
+  view.num_boundary_faces = boundary_half_faces(source).size();
+  view.flags.assign(source.num_tets(), 0);
+  return view;
+}
+
+// Volume-map mode: flags relative to the source tet, as VOLMAP's volume_mapping_check (a mapped tet
+// is inverted when its exact orientation differs from its source tet's, degenerate when either is
+// zero; for the usual VOLMAP-positive sources this is "orient3d(output tet) < 0 / == 0", metrics
+// rule 1), and the per-tet Jacobian singular values, energies and quality of the metrics module.
+// Returns how many target coordinates of boundary vertices differ from --map (0 without it).
+std::size_t add_volume_map(ViewData& view, const Args& a, const TetMeshData& source, const std::vector<std::int8_t>& source_signs,
+                           const BoundaryMap* map) {
+  const TetMeshData target = read_tet_mesh(a.inputs[1]);
+  require_float_range(target.xyz, a.inputs[1]);
+  if (target.num_vertices() != source.num_vertices() || target.tets != source.tets) {
+    throw Error(ErrorKind::BadInput, a.inputs[1], 0,
+                "not a map of " + a.inputs[0] + ": the tets differ (" + std::to_string(target.num_tets()) + " vs " +
+                    std::to_string(source.num_tets()) + " tets, " + std::to_string(target.num_vertices()) + " vs " +
+                    std::to_string(source.num_vertices()) + " vertices, same order required)");
+  }
+  view.mode = ViewMode::VolumeMap;
+  view.target_name = fs::path(a.inputs[1]).filename().string();
+  view.target_xyz = target.xyz;
+  view.volume_out = volumes(source, target.xyz);
+  const std::vector<std::int8_t> target_signs = exact_signs(source, target.xyz, a.inputs[1]);
+  for (std::size_t t = 0; t < source.num_tets(); ++t) {
+    const int si = source_signs[t], so = target_signs[t];
+    view.flags[t] = static_cast<std::uint8_t>((so != 0 && si != 0 && so != si ? kViewInverted : 0) |
+                                              (so == 0 || si == 0 ? kViewDegenerate : 0) |
+                                              (si <= 0 ? kViewSourceNonPositive : 0));
+  }
+  const volmap_view::ViewMetrics m = volmap_view::compute_view_metrics(source, target.xyz, source_signs, a.upper);
+  view.sigma = m.sigma;
+  auto energy = [&](Energy e) { return m.energy[static_cast<int>(e)]; };
+  view.fields.push_back(field_from("conformal", "Conformal", 1, a.upper, energy(Energy::Conformal), true, true));
+  view.fields.push_back(field_from("dirichlet", "Dirichlet", 3, a.upper, energy(Energy::Dirichlet), true, true));
+  view.fields.push_back(field_from("symdir", "Symmetric Dirichlet", 6, a.upper, energy(Energy::SymmetricDirichlet), true, true));
+  view.fields.push_back(field_from("arap", "ARAP", 0, a.upper, energy(Energy::Arap), true, true));
+  view.fields.push_back(field_from("mips3d", "MIPS3D", 1, a.upper, energy(Energy::Mips3d), true, true));
+  view.fields.push_back(field_from("quality_out", "quality 3r/R (target)", 0, 1, m.quality_out, false, false));
+  view.fields.push_back(field_from("quality_in", "quality 3r/R (source)", 0, 1, m.quality_in, false, false));
+  std::size_t mismatches = 0;
+  if (map)
+    for (std::size_t i = 0; i < map->size(); ++i) {
+      const std::uint32_t v = map->vids[i];
+      for (int c = 0; c < 3; ++c) mismatches += target.xyz[3 * v + c] != map->xyz[3 * i + c] ? 1 : 0;
+    }
+  return mismatches;
+}
+
+// Mesh mode, or boundary-map mode with --map: the source's own exact signs, the mapped boundary
+// vertices as the target (the others NaN), and the source quality.
+void add_mesh_or_boundary_map(ViewData& view, const Args& a, const TetMeshData& source, const std::vector<std::int8_t>& source_signs,
+                              const BoundaryMap* map) {
+  view.mode = map ? ViewMode::BoundaryMap : ViewMode::Mesh;
+  for (std::size_t t = 0; t < source.num_tets(); ++t) {
+    view.flags[t] = (source_signs[t] < 0 ? kViewInverted : 0) | (source_signs[t] == 0 ? kViewDegenerate : 0) |
+                    (source_signs[t] <= 0 ? kViewSourceNonPositive : 0);
+  }
+  if (map) {
+    view.target_name = fs::path(a.map_path).filename().string();
+    view.target_xyz.assign(source.xyz.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < map->size(); ++i)
+      for (int c = 0; c < 3; ++c) view.target_xyz[3 * map->vids[i] + c] = map->xyz[3 * i + c];
+  }
+  view.fields.push_back(field_from("quality_in", "quality 3r/R", 0, 1, volmap_view::tet_quality(source, source.xyz), false, false));
+}
+
+// The field coloured at load: --energy, else MIPS3D for a volume map and the source quality otherwise.
+std::string initial_field(const ViewData& view, const std::string& requested) {
+  const std::string energy = !requested.empty() ? requested : view.mode == ViewMode::VolumeMap ? "mips3d" : "quality_in";
+  std::string keys;
+  for (const auto& f : view.fields) {
+    if (f.key == energy) return energy;
+    keys += (keys.empty() ? "" : ", ") + f.key;
+  }
+  throw Error(ErrorKind::BadInput, "--energy " + energy + " is not available here (choose one of: " + keys + ")");
+}
+
+struct PageReport {
+  ViewSummary summary;
+  InputMeshVerdict verdict;
+  std::size_t bytes = 0, map_mismatches = 0;
+  double seconds = 0;
+};
+
+nlohmann::json page_json(const Args& a, const ViewData& view, const PageReport& p) {
+  nlohmann::json j{{"output", a.output},
+                   {"bytes", p.bytes},
+                   {"mode", view.mode == ViewMode::VolumeMap ? "volume-map" : view.mode == ViewMode::BoundaryMap ? "boundary-map" : "mesh"},
+                   {"num_vertices", view.num_vertices()},
+                   {"num_tets", view.num_tets()},
+                   {"num_inverted", p.summary.num_inverted},
+                   {"num_degenerate", p.summary.num_degenerate},
+                   {"bundle", a.bundle_path},
+                   {"valid_input", p.verdict.valid},
+                   {"seconds", p.seconds}};
+  if (!p.verdict.valid) j["input_problem"] = p.verdict.reason();
+  if (!a.map_path.empty() && a.inputs.size() == 2) j["map_coordinate_mismatches"] = p.map_mismatches;
+  for (const auto& f : p.summary.fields) {
+    j["fields"][f.key] = {{"count", f.count},
+                          {"min", std::isfinite(f.min) ? nlohmann::json(f.min) : nlohmann::json()},
+                          {"max", std::isfinite(f.max) ? nlohmann::json(f.max) : nlohmann::json()},
+                          {"weighted_mean", std::isfinite(f.weighted_mean) ? nlohmann::json(f.weighted_mean) : nlohmann::json()}};
+  }
+  return j;
+}
+
+void print_text_report(const Args& a, const ViewData& view, const PageReport& p) {
+  if (!p.verdict.valid)
+    std::cout << "volmap-view: note: " << a.inputs[0] << " is not a valid input tet mesh: " << p.verdict.reason() << "\n";
+  std::cout << "volmap-view: wrote " << a.output << " (" << p.bytes << " bytes, " << view.num_tets() << " tets, "
+            << p.summary.num_inverted << " inverted, " << p.summary.num_degenerate << " degenerate) in " << p.seconds
+            << " s\n";
+  if (!a.map_path.empty() && a.inputs.size() == 2 && p.map_mismatches)
+    std::cout << "volmap-view: note: " << p.map_mismatches << " target coordinates differ from the boundary map\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"volmap-view: write one self-contained HTML page (offline, file://) to inspect a tet mesh, "
                "a volume map (in + out) or a boundary map (in + --map) in the browser",
                "volmap-view"};
-  std::vector<std::string> inputs;
-  std::string output = "view.html", energy, map_path, bundle_path, title;
-  double upper = 100;
-  bool json = false;
-  app.add_option("meshes", inputs, "<in.mesh> [<out.mesh>]: source mesh and, for a volume map, the mapped mesh "
-                                   "(.mesh, .vtk or .vtu)")
-      ->required()->expected(1, 2);
-  app.add_option("-o,--output", output, "HTML page to write")->capture_default_str();
-  app.add_option("--energy", energy, "field coloured at load: conformal, dirichlet, symdir, arap, mips3d, "
-                                     "quality_out, quality_in (default: mips3d for a volume map, quality_in otherwise)");
-  app.add_option("--map", map_path, "boundary map (vid x y z) of <in.mesh>: boundary-map mode without <out.mesh>");
-  app.add_option("--upper", upper, "upper clamp of the energies (VOLMAP metrics default 100, at least 6)")
-      ->capture_default_str()
-      ->check(volmap_tools::finite_range(6.0, 1e300));
-  app.add_option("--bundle", bundle_path, "viewer bundle (default: $VOLMAP_VIEWER_BUNDLE or " + default_bundle_path() + ")");
-  app.add_option("--title", title, "page title (default: the input file names)");
-  app.add_flag("--json", json, "print one JSON object (output, bytes, counts, timings)");
-
+  Args a;
+  add_options(app, a);
   return volmap_tools::run_tool(app, argc, argv, [&]() -> int {
     const auto t0 = std::chrono::steady_clock::now();
-    if (bundle_path.empty()) {
+    if (a.bundle_path.empty()) {
       const char* env = std::getenv("VOLMAP_VIEWER_BUNDLE");
-      bundle_path = env && *env ? env : default_bundle_path();
+      a.bundle_path = env && *env ? env : default_bundle_path();
     }
     volmap_tools::RunFiles files;
-    for (const std::string& in : inputs) require_tet_mesh_extension(in);
-    files.input(inputs[0], "input mesh");
-    if (inputs.size() == 2) files.input(inputs[1], "mapped mesh");
-    files.input(map_path, "--map file");
-    files.input(bundle_path, "viewer bundle");
-    AtomicOutput& page = files.output(output, "output page");
-    const std::string bundle = read_bundle(bundle_path);
-    if (bundle.empty()) throw Error(ErrorKind::Io, bundle_path, 0, "the viewer bundle is empty (build viewer/: npm ci && npm run build)");
+    for (const std::string& in : a.inputs) require_tet_mesh_extension(in);
+    files.input(a.inputs[0], "input mesh");
+    if (a.inputs.size() == 2) files.input(a.inputs[1], "mapped mesh");
+    files.input(a.map_path, "--map file");
+    files.input(a.bundle_path, "viewer bundle");
+    AtomicOutput& page = files.output(a.output, "output page");
+    const std::string bundle = read_bundle(a.bundle_path);
+    if (bundle.empty()) throw Error(ErrorKind::Io, a.bundle_path, 0, "the viewer bundle is empty (build viewer/: npm ci && npm run build)");
 
-    const TetMeshData source = read_tet_mesh(inputs[0]);
-    require_float_range(source.xyz, inputs[0]);
-    if (source.num_tets() == 0) throw Error(ErrorKind::BadInput, inputs[0], 0, "has no tets: nothing to show");
+    const TetMeshData source = read_tet_mesh(a.inputs[0]);
+    require_float_range(source.xyz, a.inputs[0]);
+    if (source.num_tets() == 0) throw Error(ErrorKind::BadInput, a.inputs[0], 0, "has no tets: nothing to show");
+    PageReport report;
     // A viewer shows broken meshes too (that is what it is for), but says so.
-    const InputMeshVerdict verdict = volmap_tools::naming_file(inputs[0], [&] { return judge_input_mesh(source); });
-    ViewData view;
-    view.source_name = fs::path(inputs[0]).filename().string();
-    view.source_xyz = source.xyz;
-    view.tets = source.tets;
-    view.volume_in = volumes(source, source.xyz);
-    view.num_boundary_faces = boundary_half_faces(source).size();
-    const std::vector<std::int8_t> source_signs = exact_signs(source, source.xyz, inputs[0]);
-    view.flags.assign(source.num_tets(), 0);
-
-    std::size_t map_mismatches = 0;
+    report.verdict = volmap_tools::naming_file(a.inputs[0], [&] { return judge_input_mesh(source); });
+    ViewData view = source_view(a, source);
+    const std::vector<std::int8_t> source_signs = exact_signs(source, source.xyz, a.inputs[0]);
     BoundaryMap map;
-    if (!map_path.empty()) {
-      map = read_boundary_map(map_path);
-      validate_boundary_map(map, source, map_path);
-      require_float_range(map.xyz, map_path);
+    if (!a.map_path.empty()) {
+      map = read_boundary_map(a.map_path);
+      validate_boundary_map(map, source, a.map_path);
+      require_float_range(map.xyz, a.map_path);
     }
+    const BoundaryMap* given_map = a.map_path.empty() ? nullptr : &map;
+    if (a.inputs.size() == 2)
+      report.map_mismatches = add_volume_map(view, a, source, source_signs, given_map);
+    else
+      add_mesh_or_boundary_map(view, a, source, source_signs, given_map);
+    view.initial_field = initial_field(view, a.energy);
+    view.title = a.title.empty() ? view.source_name + (view.target_name.empty() ? "" : " → " + view.target_name) : a.title;
 
-    if (inputs.size() == 2) {
-      const TetMeshData target = read_tet_mesh(inputs[1]);
-      require_float_range(target.xyz, inputs[1]);
-      if (target.num_vertices() != source.num_vertices() || target.tets != source.tets) {
-        throw Error(ErrorKind::BadInput, inputs[1], 0,
-                    "not a map of " + inputs[0] + ": the tets differ (" + std::to_string(target.num_tets()) + " vs " +
-                        std::to_string(source.num_tets()) + " tets, " + std::to_string(target.num_vertices()) + " vs " +
-                        std::to_string(source.num_vertices()) + " vertices, same order required)");
-      }
-      view.mode = ViewMode::VolumeMap;
-      view.target_name = fs::path(inputs[1]).filename().string();
-      view.target_xyz = target.xyz;
-      view.volume_out = volumes(source, target.xyz);
-      const std::vector<std::int8_t> target_signs = exact_signs(source, target.xyz, inputs[1]);
-      // Relative to the source tet, as VOLMAP's volume_mapping_check: a mapped tet is inverted when its
-      // exact orientation differs from its source tet's, degenerate when either is zero. For the
-      // usual VOLMAP-positive sources this is "orient3d(output tet) < 0 / == 0" (metrics rule 1).
-      for (std::size_t t = 0; t < source.num_tets(); ++t) {
-        const int si = source_signs[t], so = target_signs[t];
-        view.flags[t] = static_cast<std::uint8_t>((so != 0 && si != 0 && so != si ? kViewInverted : 0) |
-                                                  (so == 0 || si == 0 ? kViewDegenerate : 0) |
-                                                  (si <= 0 ? kViewSourceNonPositive : 0));
-      }
-      // Per-tet Jacobian singular values, energies and quality from the metrics module.
-      const volmap_view::ViewMetrics m = volmap_view::compute_view_metrics(source, target.xyz, source_signs, upper);
-      view.sigma = m.sigma;
-      using volmap::Energy;
-      auto energy = [&](Energy e) { return m.energy[static_cast<int>(e)]; };
-      view.fields.push_back(field_from("conformal", "Conformal", 1, upper, energy(Energy::Conformal), true, true));
-      view.fields.push_back(field_from("dirichlet", "Dirichlet", 3, upper, energy(Energy::Dirichlet), true, true));
-      view.fields.push_back(field_from("symdir", "Symmetric Dirichlet", 6, upper, energy(Energy::SymmetricDirichlet), true, true));
-      view.fields.push_back(field_from("arap", "ARAP", 0, upper, energy(Energy::Arap), true, true));
-      view.fields.push_back(field_from("mips3d", "MIPS3D", 1, upper, energy(Energy::Mips3d), true, true));
-      view.fields.push_back(field_from("quality_out", "quality 3r/R (target)", 0, 1, m.quality_out, false, false));
-      view.fields.push_back(field_from("quality_in", "quality 3r/R (source)", 0, 1, m.quality_in, false, false));
-      if (!map_path.empty()) {
-        for (std::size_t i = 0; i < map.size(); ++i) {
-          const std::uint32_t v = map.vids[i];
-          for (int a = 0; a < 3; ++a) map_mismatches += target.xyz[3 * v + a] != map.xyz[3 * i + a] ? 1 : 0;
-        }
-      }
-    } else {
-      view.mode = map_path.empty() ? ViewMode::Mesh : ViewMode::BoundaryMap;
-      for (std::size_t t = 0; t < source.num_tets(); ++t) {
-        view.flags[t] = (source_signs[t] < 0 ? kViewInverted : 0) | (source_signs[t] == 0 ? kViewDegenerate : 0) |
-                        (source_signs[t] <= 0 ? kViewSourceNonPositive : 0);
-      }
-      if (!map_path.empty()) {
-        view.target_name = fs::path(map_path).filename().string();
-        view.target_xyz.assign(source.xyz.size(), std::numeric_limits<double>::quiet_NaN());
-        for (std::size_t i = 0; i < map.size(); ++i)
-          for (int a = 0; a < 3; ++a) view.target_xyz[3 * map.vids[i] + a] = map.xyz[3 * i + a];
-      }
-      view.fields.push_back(field_from("quality_in", "quality 3r/R", 0, 1, volmap_view::tet_quality(source, source.xyz), false, false));
-    }
-    if (energy.empty()) energy = view.mode == ViewMode::VolumeMap ? "mips3d" : "quality_in";
-    view.initial_field = energy;
-    bool known = false;
-    for (const auto& f : view.fields) known = known || f.key == energy;
-    if (!known) {
-      std::string keys;
-      for (const auto& f : view.fields) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(ErrorKind::BadInput, "--energy " + energy + " is not available here (choose one of: " + keys + ")");
-    }
-    view.title = title.empty() ? view.source_name + (view.target_name.empty() ? "" : " → " + view.target_name) : title;
-
-    const std::string html = volmap_tools::naming_file(bundle_path, [&] { return build_view_html(view, bundle); });
+    const std::string html = volmap_tools::naming_file(a.bundle_path, [&] { return build_view_html(view, bundle); });
     write_text(page, html);
     files.commit();
-    const ViewSummary summary = summarize_view(view);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const std::size_t bytes = html.size();
-    if (json) {
-      nlohmann::json j{{"output", output},
-                       {"bytes", bytes},
-                       {"mode", view.mode == ViewMode::VolumeMap ? "volume-map" : view.mode == ViewMode::BoundaryMap ? "boundary-map" : "mesh"},
-                       {"num_vertices", view.num_vertices()},
-                       {"num_tets", view.num_tets()},
-                       {"num_inverted", summary.num_inverted},
-                       {"num_degenerate", summary.num_degenerate},
-                       {"bundle", bundle_path},
-                       {"valid_input", verdict.valid},
-                       {"seconds", seconds}};
-      if (!verdict.valid) j["input_problem"] = verdict.reason();
-      if (!map_path.empty() && inputs.size() == 2) j["map_coordinate_mismatches"] = map_mismatches;
-      for (const auto& fs_ : summary.fields) {
-        j["fields"][fs_.key] = {{"count", fs_.count},
-                                {"min", std::isfinite(fs_.min) ? nlohmann::json(fs_.min) : nlohmann::json()},
-                                {"max", std::isfinite(fs_.max) ? nlohmann::json(fs_.max) : nlohmann::json()},
-                                {"weighted_mean", std::isfinite(fs_.weighted_mean) ? nlohmann::json(fs_.weighted_mean) : nlohmann::json()}};
-      }
-      return volmap_tools::print_json(std::move(j), volmap_tools::kExitOk);
-    } else {
-      if (!verdict.valid)
-        std::cout << "volmap-view: note: " << inputs[0] << " is not a valid input tet mesh: " << verdict.reason() << "\n";
-      std::cout << "volmap-view: wrote " << output << " (" << bytes << " bytes, " << view.num_tets() << " tets, "
-                << summary.num_inverted << " inverted, " << summary.num_degenerate << " degenerate) in " << seconds
-                << " s\n";
-      if (!map_path.empty() && inputs.size() == 2 && map_mismatches)
-        std::cout << "volmap-view: note: " << map_mismatches << " target coordinates differ from the boundary map\n";
-    }
+    report.summary = summarize_view(view);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.bytes = html.size();
+    if (a.json) return volmap_tools::print_json(page_json(a, view, report), volmap_tools::kExitOk);
+    print_text_report(a, view, report);
     return volmap_tools::kExitOk;
-  }, &json);
+  }, &a.json);
 }
