@@ -180,8 +180,8 @@ volmap::VolumeMapOptions mapping_options(const Args& a, bool refine, double seco
   opt.bad_tet_flips = !a.no_flips;
 #ifdef VOLMAP_HAVE_TETGEN
   if (refine && !a.no_remesh)
-    opt.remesh_interior = [quality = a.remesh_quality](const volmap::TetMeshData& source) {
-      return volmap::remesh_interior(source, volmap::InteriorRemeshOptions{quality});
+    opt.remesh_interior = [quality = a.remesh_quality](const volmap::TetMeshData& source, double seconds) {
+      return volmap::remesh_interior(source, volmap::InteriorRemeshOptions{quality, seconds});
     };
 #endif
   return opt;

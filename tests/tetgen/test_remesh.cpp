@@ -75,6 +75,39 @@ TEST_CASE("remesh_interior keeps a single tet label and refuses several") {
   CHECK_THROWS_AS(remesh_interior(grid), Error);
 }
 
+TEST_CASE("remesh_interior stops TetGen at its time limit, and a limit it meets changes nothing") {
+  // TetGen cannot be interrupted: it runs in a child that is killed at the limit. A 10,368-tet
+  // grid takes TetGen tens of milliseconds, far beyond 1 ms.
+  const TetMeshData grid = generate_kuhn_unit_cube(12);
+  InteriorRemeshOptions hurried;
+  hurried.time_limit_seconds = 1e-3;
+  try {
+    (void)remesh_interior(grid, hurried);
+    FAIL("the remesh should have been stopped");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Failed);
+    CHECK(std::string(e.reason()).find("did not finish within") != std::string::npos);
+  }
+  const TetMeshData small = generate_kuhn_unit_cube(3);
+  InteriorRemeshOptions patient;
+  patient.time_limit_seconds = 600;
+  const TetMeshData limited = remesh_interior(small, patient), unlimited = remesh_interior(small);
+  CHECK(limited.tets == unlimited.tets);
+  CHECK(limited.xyz == unlimited.xyz);
+}
+
+TEST_CASE("tetrahedralize_surface stops TetGen at its time limit") {
+  const TetMeshData grid = generate_kuhn_unit_cube(12);
+  TriangleSurface surface;
+  surface.xyz = grid.xyz;
+  for (const std::uint64_t hf : boundary_half_faces(grid))
+    for (const std::uint32_t v : half_face_vertices(grid, hf)) surface.tris.push_back(v);
+  TetrahedralizeOptions hurried;
+  hurried.quality = 1.1;  // much quality refinement: many Steiner points
+  hurried.time_limit_seconds = 1e-3;
+  CHECK_THROWS_WITH_AS(tetrahedralize_surface(surface, hurried), doctest::Contains("did not finish within"), Error);
+}
+
 #ifdef VOLMAP_TEST_THIN_SHAPES
 TEST_CASE("remesh_interior: where TetGen aborts on the boundary PLC, the input's tets are refined instead") {
   // The fish of the thin shapes, tetrahedralised without quality refinement (volmap-tetrahedralize

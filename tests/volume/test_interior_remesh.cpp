@@ -102,7 +102,7 @@ TEST_CASE("interior remesh: asked only when the runs from the input end uncertif
   int calls = 0;
   volmap::VolumeMapOptions opt;
   opt.time_limit_seconds = 20;
-  opt.remesh_interior = [&](const volmap::TetMeshData& m) {
+  opt.remesh_interior = [&](const volmap::TetMeshData& m, double) {
     ++calls;
     return m;
   };
@@ -129,12 +129,17 @@ TEST_CASE("interior remesh: an uncertified start hands the rest of the limit to 
   opt.remesh_share = 1e-6;         // the runs from the input stop at once...
   opt.initial_xyz = c.scrambled;   // ... on a tangled start
   REQUIRE(volmap::count_nonpositive(c.scrambled, c.mesh.tets) > 50);
-  opt.remesh_interior = [&](const volmap::TetMeshData& m) {
+  double remesh_seconds = -1;
+  opt.remesh_interior = [&](const volmap::TetMeshData& m, double seconds) {
     ++calls;
+    remesh_seconds = seconds;
     return m;  // the identity keeps the contract; the remeshed run starts from Tutte 3D
   };
   const auto r = volmap::compute_volume_map(c.mesh, c.map, opt);
   CHECK(calls == 1);
+  // The remesher may take at most half of the time left, so that the remeshed source can be mapped.
+  CHECK(remesh_seconds > 0);
+  CHECK(remesh_seconds <= 0.5 * opt.time_limit_seconds);
   CHECK(r.certified);
   CHECK(r.remeshed);
   CHECK(r.refined);
@@ -157,7 +162,7 @@ TEST_CASE("interior remesh: a refused or throwing remesher is a failed stage; th
   opt.initial_xyz = c.scrambled;
   opt.quality_pass = false;
   SUBCASE("a vertex moved") {
-    opt.remesh_interior = [](const volmap::TetMeshData& m) {
+    opt.remesh_interior = [](const volmap::TetMeshData& m, double) {
       auto moved = m;
       moved.xyz[0] += 0.5;
       return moved;
@@ -180,7 +185,7 @@ TEST_CASE("interior remesh: a refused or throwing remesher is a failed stage; th
     CHECK(r.refined == (r.source.tets != c.mesh.tets || r.source.xyz != c.mesh.xyz));  // refined iff changed
   }
   SUBCASE("the mesher throws") {
-    opt.remesh_interior = [](const volmap::TetMeshData&) -> volmap::TetMeshData { throw std::runtime_error("mesher down"); };
+    opt.remesh_interior = [](const volmap::TetMeshData&, double) -> volmap::TetMeshData { throw std::runtime_error("mesher down"); };
     const auto r = volmap::compute_volume_map(c.mesh, c.map, opt);
     CHECK_FALSE(r.remeshed);
     const auto* stage = find_stage(r, "remesh");

@@ -14,6 +14,7 @@
 #include <tetgen.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <functional>
 #include <sstream>
@@ -23,17 +24,18 @@
 namespace volmap {
 namespace {
 
-TetMeshData remesh_from_boundary(const TetMeshData& mesh, double quality) {
+TetMeshData remesh_from_boundary(const TetMeshData& mesh, double quality, double time_limit_seconds) {
   TriangleSurface surface;
   surface.xyz = mesh.xyz;
   for (const std::uint64_t hf : boundary_half_faces(mesh))
     for (const std::uint32_t v : half_face_vertices(mesh, hf)) surface.tris.push_back(v);
   TetrahedralizeOptions tetgen;
   tetgen.quality = quality;
+  tetgen.time_limit_seconds = time_limit_seconds;
   return tetrahedralize_surface(surface, tetgen);
 }
 
-TetMeshData refine_input_tets(const TetMeshData& mesh, double quality) {
+TetMeshData refine_input_tets(const TetMeshData& mesh, double quality, double time_limit_seconds) {
   tetgenio in;
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(mesh.num_vertices());
@@ -61,7 +63,7 @@ TetMeshData refine_input_tets(const TetMeshData& mesh, double quality) {
   std::ostringstream switches;
   switches.precision(17);
   switches << "rq" << quality << "YQz";
-  return run_tetgen_in_child(switches.str(), in);
+  return run_tetgen_in_child(switches.str(), in, time_limit_seconds);
 }
 
 }  // namespace
@@ -71,13 +73,20 @@ TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions
   const bool labelled = !mesh.tet_labels.empty();
   if (labelled && std::adjacent_find(mesh.tet_labels.begin(), mesh.tet_labels.end(), std::not_equal_to<>()) != mesh.tet_labels.end())
     throw Error(ErrorKind::Failed, "the interior remesh would lose the input's tet labels (more than one label)");
+  // Both attempts share the time limit; the second gets what the first left (none: stop).
+  const auto start = std::chrono::steady_clock::now();
+  const bool limited = options.time_limit_seconds > 0;
+  auto time_left = [&] {
+    return options.time_limit_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   TetMeshData remeshed;
   try {
-    remeshed = remesh_from_boundary(mesh, options.quality);
+    remeshed = remesh_from_boundary(mesh, options.quality, options.time_limit_seconds);
   } catch (const Error& from_boundary) {
     if (from_boundary.kind() != ErrorKind::Failed) throw;
+    if (limited && time_left() <= 0) throw;
     try {
-      remeshed = refine_input_tets(mesh, options.quality);
+      remeshed = refine_input_tets(mesh, options.quality, limited ? time_left() : 0);
     } catch (const Error& refining) {
       throw Error(ErrorKind::Failed, std::string(from_boundary.reason()) + "; refining the input tets: " + refining.reason());
     }

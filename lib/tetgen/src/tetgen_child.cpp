@@ -7,10 +7,14 @@
 #include <tetgen.h>
 
 #include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -71,17 +75,30 @@ std::string tetgen_reason(int code) {
   _exit(0);
 }
 
-std::vector<char> read_until_closed(int fd) {
-  std::vector<char> bytes;
+// Reads the child's pipe until the child closes it; false when `time_limit_seconds` (> 0) passed
+// first. Closes `fd` either way.
+bool read_until_closed(int fd, double time_limit_seconds, std::vector<char>& bytes) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(time_limit_seconds);
   char buffer[1 << 16];
   for (;;) {
+    if (time_limit_seconds > 0) {
+      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+      pollfd p{fd, POLLIN, 0};
+      const int ready = left > 0 ? poll(&p, 1, int(std::ceil(std::min(left, 3600.0) * 1000))) : 0;
+      if (ready < 0 && errno == EINTR) continue;
+      if (ready == 0) {
+        close(fd);
+        return false;
+      }
+    }
     const ssize_t r = read(fd, buffer, sizeof buffer);
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) break;
     bytes.insert(bytes.end(), buffer, buffer + r);
   }
   close(fd);
-  return bytes;
+  return true;
 }
 
 // The child's bytes as a mesh, each tet checked exactly and turned VOLMAP-positive (TetGen's are all
@@ -126,7 +143,7 @@ TetMeshData decode_child_output(const std::vector<char>& bytes, bool crashed) {
 // unwinding destructor frees again), which crashes the whole process on bad input (typically
 // self-intersecting surfaces). So TetGen runs in a child that sends its result through a pipe; a
 // crash or an error code becomes Error(Failed) here.
-TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in) {
+TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in, double time_limit_seconds) {
   int fds[2];
   if (pipe(fds) != 0) throw Error(ErrorKind::Failed, "cannot create a pipe for TetGen");
   std::fflush(stdout);
@@ -142,9 +159,16 @@ TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in) {
     tetgen_child(fds[1], switches, in);
   }
   close(fds[1]);
-  const std::vector<char> bytes = read_until_closed(fds[0]);
+  std::vector<char> bytes;
+  const bool finished = read_until_closed(fds[0], time_limit_seconds, bytes);
+  if (!finished) kill(pid, SIGKILL);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!finished) {
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.3g", time_limit_seconds);
+    throw Error(ErrorKind::Failed, std::string("TetGen did not finish within ") + limit + " s (stopped)");
   }
   return decode_child_output(bytes, WIFSIGNALED(status));
 }

@@ -13,7 +13,8 @@ class tetgenio;
 namespace volmap {
 
 // Throws Error(Failed) with TetGen's reason when it refuses the input, when the child crashes,
-// or when a produced tet is degenerate.
-TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in);
+// or when a produced tet is degenerate. With time_limit_seconds > 0 the child is killed when it
+// has not finished by then, and Error(Failed) says so (TetGen itself cannot be interrupted).
+TetMeshData run_tetgen_in_child(const std::string& switches, tetgenio& in, double time_limit_seconds = 0);
 
 }  // namespace volmap

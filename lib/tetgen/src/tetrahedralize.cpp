@@ -125,7 +125,7 @@ TetMeshData tetrahedralize_surface(const TriangleSurface& s, const Tetrahedraliz
   if (!options.coarse) sw << "q" << options.quality;
   sw << "YQz";
   if (options.max_volume > 0) sw << "a" << options.max_volume;
-  return run_tetgen_in_child(sw.str(), in);
+  return run_tetgen_in_child(sw.str(), in, options.time_limit_seconds);
 }
 
 }  // namespace volmap

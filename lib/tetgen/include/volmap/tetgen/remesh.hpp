@@ -18,12 +18,16 @@ struct InteriorRemeshOptions {
   // quality refinement (most tets with four boundary vertices) 3.0 changed the tet count by −8 % to
   // +12 % and gave every untangler interior vertices to move (docs/mapping.md §8 step 11).
   double quality = 3.0;
+  // > 0: both TetGen attempts together stop after this long, and remesh_interior throws
+  // Error(Failed). TetGen cannot be interrupted, so it runs in a child that is killed then: on the
+  // 64k-tet coarse fins of the thin_coarse set with 4 subdivisions it ran 39 s.
+  double time_limit_seconds = 0;
 };
 
 // Tet labels: a labelled input with one label gives every new tet that label. Throws
 // Error(BadInput) when the input's boundary is not a closed genus-0 surface, Error(Failed) when
-// TetGen refuses both ways or does not keep every input vertex in place, or the input has several labels
-// (the new tets could not carry them).
+// TetGen refuses both ways, runs out of its time limit, or does not keep every input vertex in
+// place, or the input has several labels (the new tets could not carry them).
 TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions& options = {});
 
 }  // namespace volmap

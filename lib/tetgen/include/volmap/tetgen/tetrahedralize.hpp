@@ -35,10 +35,12 @@ struct TetrahedralizeOptions {
   double quality = 1.414;  // radius-edge ratio bound (TetGen q)
   double max_volume = 0;   // TetGen a<V> when > 0
   bool coarse = false;     // no quality refinement (TetGen without q; `quality` is ignored)
+  double time_limit_seconds = 0;  // > 0: TetGen is stopped after this long (Error(Failed))
 };
 
 // Throws Error(BadInput) for topological problems, Error(Failed) with TetGen's reason when TetGen
-// refuses the input (self-intersections, tiny features, ...) or a produced tet is degenerate.
+// refuses the input (self-intersections, tiny features, ...), a produced tet is degenerate, or the
+// time limit passed.
 TetMeshData tetrahedralize_surface(const TriangleSurface& surface, const TetrahedralizeOptions& options = {});
 
 }  // namespace volmap

@@ -6,7 +6,8 @@
 // VOLMAP-positive (orient3d > 0); tet labels, if any, one per tet. The mapper never trusts it:
 // interior_remesh_problem checks all of this exactly before the remeshed source is used. The volume
 // wing has no mesher of its own; the tools pass TetGen's (volmap/tetgen/remesh.hpp), tests may pass
-// any function.
+// any function. The mapper passes the seconds the remesh may take (0 = no limit): a remesher past
+// them throws (or returns late, which the mapper's clock then charges to the remeshed run).
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
@@ -16,7 +17,7 @@
 
 namespace volmap {
 
-using InteriorRemesher = std::function<TetMeshData(const TetMeshData&)>;
+using InteriorRemesher = std::function<TetMeshData(const TetMeshData& source, double time_limit_seconds)>;
 
 // Empty when `remeshed` keeps the contract above for `input`, else the first problem found in words.
 std::string interior_remesh_problem(const TetMeshData& input, const TetMeshData& remeshed);
