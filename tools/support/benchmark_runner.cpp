@@ -240,6 +240,91 @@ MethodSpec resolve_method(const std::string& method, const std::string& tools_di
   return spec;
 }
 
+namespace {
+
+// The candidate's command line: <command> in map out [method args]; built-ins also get --json and
+// (mappers) --refined-input, and a --time-limit of 0.8 x the runner's timeout unless the method
+// arguments set their own, so they stop by themselves before the deadline, keeping their best map.
+std::vector<std::string> candidate_argv(const BenchmarkCase& c, const MethodSpec& method, const RunOptions& options,
+                                        const fs::path& output, const fs::path& refined) {
+  std::vector<std::string> argv = method.command;
+  argv.insert(argv.end(), {c.mesh_path, c.map_path, output.string()});
+  argv.insert(argv.end(), method.args.begin(), method.args.end());
+  const auto given = [&](const char* flag) {
+    return std::find(method.args.begin(), method.args.end(), flag) != method.args.end();
+  };
+  if (method.builtin && !given("--json")) argv.push_back("--json");
+  if (method.builtin && method.name != "tutte3d") {
+    argv.insert(argv.end(), {"--refined-input", refined.string()});
+    if (options.timeout_s > 0 && !given("--time-limit"))
+      argv.insert(argv.end(), {"--time-limit", std::to_string(0.8 * options.timeout_s)});
+  }
+  return argv;
+}
+
+// Why the candidate's run gave nothing to check (empty when it wrote an output).
+std::string candidate_failure(const ProcessResult& run, const RunOptions& options, const fs::path& output, const fs::path& work) {
+  std::error_code ec;
+  if (!run.started) return run.spawn_error;
+  if (run.timed_out) return "timed out after " + std::to_string(options.timeout_s) + " s";
+  if (run.term_signal != 0)
+    return std::string("killed by signal ") + std::to_string(run.term_signal) + " (" + strsignal(run.term_signal) + ")";
+  if (!fs::is_regular_file(output, ec)) {
+    std::string failure = "no output written (exit " + std::to_string(run.exit_code) + ")";
+    const std::string reason = first_line(work / "candidate.err");
+    if (!reason.empty()) failure += ": " + reason;
+    return failure;
+  }
+  return {};
+}
+
+constexpr double kCheckerTimeout = 600;
+
+// The exact check (volmap-map-check --absolute --boundary) of what the candidate wrote, in its own
+// process. Certified = the checker ran, exited 0 and says certified, with consistent counts.
+void record_exact_check(CaseRecord& r, const BenchmarkCase& c, const fs::path& tools, const fs::path& source,
+                        const fs::path& output, const fs::path& work, std::atomic<int>* child_pid) {
+  const ProcessResult check = run_process({(tools / "volmap-map-check").string(), source.string(), output.string(),
+                                           "--boundary", c.map_path, "--absolute", "--json"},
+                                          kCheckerTimeout, (work / "check.json").string(), (work / "check.err").string(),
+                                          child_pid);
+  const auto check_json = parse_tool_json(work / "check.json");
+  // volmap-map-check --json: {"certified":..,"num_tets":..,"output":{"positive","zero","negative"},..}
+  bool checker_certified = false;
+  if (check_json) {
+    r.positive = count_at(*check_json, {"output", "positive"});
+    r.zero = count_at(*check_json, {"output", "zero"});
+    r.negative = count_at(*check_json, {"output", "negative"});
+    r.tets_out = count_at(*check_json, {"num_tets"});
+    checker_certified = check_json->value("certified", false);
+  }
+  r.certified = check.started && !check.timed_out && check.term_signal == 0 && check.exit_code == 0 &&
+                checker_certified && r.zero == 0 && r.negative == 0 && r.positive == r.tets_out;
+  if (!check.started || check.term_signal != 0 || check.timed_out || check.exit_code == 2) {
+    const std::string reason = first_line(work / "check.err");
+    r.failure = "check failed to run" + (reason.empty() ? std::string() : ": " + reason);
+  }
+}
+
+// VOLMAP's energies (volmap-metrics, its own process); left unset when it fails.
+void record_metrics(CaseRecord& r, const fs::path& tools, const fs::path& source, const fs::path& output,
+                    const fs::path& work, std::atomic<int>* child_pid) {
+  const ProcessResult metrics = run_process({(tools / "volmap-metrics").string(), source.string(), output.string(), "--json"},
+                                            kCheckerTimeout, (work / "metrics.json").string(),
+                                            (work / "metrics.err").string(), child_pid);
+  if (!metrics.started || metrics.exit_code != 0) return;
+  if (const auto m = parse_tool_json(work / "metrics.json")) {
+    r.conformal = energy_mean(*m, "conformal");
+    r.dirichlet = energy_mean(*m, "dirichlet");
+    r.symmetric_dirichlet = energy_mean(*m, "symmetric_dirichlet");
+    r.arap = energy_mean(*m, "arap");
+    r.mips3d = energy_mean(*m, "mips3d");
+    if (r.tets_out < 0) r.tets_out = count_at(*m, {"num_tets"});
+  }
+}
+
+}  // namespace
+
 CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunOptions& options,
                     std::atomic<int>* child_pid) {
   CaseRecord r;
@@ -257,47 +342,21 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
   fs::remove(output);
   fs::remove(refined);
 
-  std::vector<std::string> argv = method.command;
-  argv.insert(argv.end(), {c.mesh_path, c.map_path, output.string()});
-  argv.insert(argv.end(), method.args.begin(), method.args.end());
-  const auto given = [&](const char* flag) {
-    return std::find(method.args.begin(), method.args.end(), flag) != method.args.end();
-  };
-  // Built-ins print one JSON object (read below for "refined" and "certified_by").
-  if (method.builtin && !given("--json")) argv.push_back("--json");
-  if (method.builtin && method.name != "tutte3d") {
-    argv.insert(argv.end(), {"--refined-input", refined.string()});
-    // Built-in mappers stop by themselves before the runner's deadline, keeping their best map
-    // (unless the method arguments set their own --time-limit).
-    if (options.timeout_s > 0 && !given("--time-limit"))
-      argv.insert(argv.end(), {"--time-limit", std::to_string(0.8 * options.timeout_s)});
-  }
-  const ProcessResult run = run_process(argv, options.timeout_s, (work / "candidate.out").string(),
-                                       (work / "candidate.err").string(), child_pid,
-                                       {"VOLMAP_REFINED_INPUT=" + refined.string()});  // for external candidates
+  const ProcessResult run = run_process(candidate_argv(c, method, options, output, refined), options.timeout_s,
+                                        (work / "candidate.out").string(), (work / "candidate.err").string(), child_pid,
+                                        {"VOLMAP_REFINED_INPUT=" + refined.string()});  // for external candidates
   r.exit_code = run.started && run.term_signal == 0 && !run.timed_out ? run.exit_code : -1;
   r.term_signal = run.term_signal;
   r.timed_out = run.timed_out;
   r.time_s = run.seconds;
   r.peak_rss_mb = run.peak_rss_mb;
   r.cpu_s = run.cpu_seconds;
-
-  std::error_code ec;
-  if (!run.started) {
-    r.failure = run.spawn_error;
-  } else if (run.timed_out) {
-    r.failure = "timed out after " + std::to_string(options.timeout_s) + " s";
-  } else if (run.term_signal != 0) {
-    r.failure = std::string("killed by signal ") + std::to_string(run.term_signal) + " (" + strsignal(run.term_signal) + ")";
-  } else if (!fs::is_regular_file(output, ec)) {
-    r.failure = "no output written (exit " + std::to_string(run.exit_code) + ")";
-    const std::string reason = first_line(work / "candidate.err");
-    if (!reason.empty()) r.failure += ": " + reason;
-  }
+  r.failure = candidate_failure(run, options, output, work);
   if (!r.failure.empty()) return r;
 
   // The exact check and the metrics run on what the candidate wrote (against its refined source
-  // when it wrote one), each in its own process.
+  // when it wrote one).
+  std::error_code ec;
   const bool wrote_refined = fs::is_regular_file(refined, ec);
   const fs::path source = wrote_refined ? refined : fs::path(c.mesh_path);
   // What the candidate said about itself (built-ins with --json; anything else may print nothing).
@@ -307,42 +366,8 @@ CaseRecord run_case(const BenchmarkCase& c, const MethodSpec& method, const RunO
     if (auto it = said->find("certified_by"); it != said->end() && it->is_string()) r.certified_by = it->get<std::string>();
   }
   const fs::path tools(options.tools_dir);
-  const double checker_timeout = 600;
-  const ProcessResult check = run_process({(tools / "volmap-map-check").string(), source.string(), output.string(),
-                                           "--boundary", c.map_path, "--absolute", "--json"},
-                                          checker_timeout, (work / "check.json").string(), (work / "check.err").string(),
-                                          child_pid);
-  const auto check_json = parse_tool_json(work / "check.json");
-  // volmap-map-check --json: {"certified":..,"num_tets":..,"output":{"positive","zero","negative"},..}
-  bool checker_certified = false;
-  if (check_json) {
-    r.positive = count_at(*check_json, {"output", "positive"});
-    r.zero = count_at(*check_json, {"output", "zero"});
-    r.negative = count_at(*check_json, {"output", "negative"});
-    r.tets_out = count_at(*check_json, {"num_tets"});
-    checker_certified = check_json->value("certified", false);
-  }
-  // Certified = the exact checker ran, exited 0 and says certified, with consistent counts.
-  r.certified = check.started && !check.timed_out && check.term_signal == 0 && check.exit_code == 0 &&
-                checker_certified && r.zero == 0 && r.negative == 0 && r.positive == r.tets_out;
-  if (!check.started || check.term_signal != 0 || check.timed_out || check.exit_code == 2) {
-    const std::string reason = first_line(work / "check.err");
-    r.failure = "check failed to run" + (reason.empty() ? std::string() : ": " + reason);
-  }
-
-  const ProcessResult metrics = run_process({(tools / "volmap-metrics").string(), source.string(), output.string(), "--json"},
-                                            checker_timeout, (work / "metrics.json").string(),
-                                            (work / "metrics.err").string(), child_pid);
-  if (metrics.started && metrics.exit_code == 0) {
-    if (const auto m = parse_tool_json(work / "metrics.json")) {
-      r.conformal = energy_mean(*m, "conformal");
-      r.dirichlet = energy_mean(*m, "dirichlet");
-      r.symmetric_dirichlet = energy_mean(*m, "symmetric_dirichlet");
-      r.arap = energy_mean(*m, "arap");
-      r.mips3d = energy_mean(*m, "mips3d");
-      if (r.tets_out < 0) r.tets_out = count_at(*m, {"num_tets"});
-    }
-  }
+  record_exact_check(r, c, tools, source, output, work, child_pid);
+  record_metrics(r, tools, source, output, work, child_pid);
   // Growth is measured against the original (unrefined) input's tet count.
   try {
     r.tets_in = static_cast<long long>(read_tet_mesh(c.mesh_path).num_tets());
