@@ -7,6 +7,7 @@
 
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/error.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/tetgen/tetrahedralize.hpp>
 
 #include "tetgen_child.hpp"
@@ -14,7 +15,6 @@
 #include <tetgen.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 #include <functional>
 #include <sstream>
@@ -74,19 +74,14 @@ TetMeshData remesh_interior(const TetMeshData& mesh, const InteriorRemeshOptions
   if (labelled && std::adjacent_find(mesh.tet_labels.begin(), mesh.tet_labels.end(), std::not_equal_to<>()) != mesh.tet_labels.end())
     throw Error(ErrorKind::Failed, "the interior remesh would lose the input's tet labels (more than one label)");
   // Both attempts share the time limit; the second gets what the first left (none: stop).
-  const auto start = std::chrono::steady_clock::now();
-  const bool limited = options.time_limit_seconds > 0;
-  auto time_left = [&] {
-    return options.time_limit_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  const TimeBudget budget(options.time_limit_seconds);
   TetMeshData remeshed;
   try {
-    remeshed = remesh_from_boundary(mesh, options.quality, options.time_limit_seconds);
+    remeshed = remesh_from_boundary(mesh, options.quality, budget.option_seconds());
   } catch (const Error& from_boundary) {
-    if (from_boundary.kind() != ErrorKind::Failed) throw;
-    if (limited && time_left() <= 0) throw;
+    if (from_boundary.kind() != ErrorKind::Failed || budget.expired()) throw;
     try {
-      remeshed = refine_input_tets(mesh, options.quality, limited ? time_left() : 0);
+      remeshed = refine_input_tets(mesh, options.quality, budget.option_seconds());
     } catch (const Error& refining) {
       throw Error(ErrorKind::Failed, std::string(from_boundary.reason()) + "; refining the input tets: " + refining.reason());
     }

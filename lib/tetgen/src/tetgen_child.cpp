@@ -2,6 +2,7 @@
 #include "tetgen_child.hpp"
 
 #include <volmap/core/error.hpp>
+#include <volmap/core/time_budget.hpp>
 #include <volmap/predicates.hpp>
 
 #include <tetgen.h>
@@ -13,7 +14,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -78,14 +78,12 @@ std::string tetgen_reason(int code) {
 // Reads the child's pipe until the child closes it; false when `time_limit_seconds` (> 0) passed
 // first. Closes `fd` either way.
 bool read_until_closed(int fd, double time_limit_seconds, std::vector<char>& bytes) {
-  using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration<double>(time_limit_seconds);
+  const TimeBudget budget(time_limit_seconds);
   char buffer[1 << 16];
   for (;;) {
-    if (time_limit_seconds > 0) {
-      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (budget.limited()) {
       pollfd p{fd, POLLIN, 0};
-      const int ready = left > 0 ? poll(&p, 1, int(std::ceil(std::min(left, 3600.0) * 1000))) : 0;
+      const int ready = budget.expired() ? 0 : poll(&p, 1, int(std::ceil(std::min(budget.remaining(), 3600.0) * 1000)));
       if (ready < 0 && errno == EINTR) continue;
       if (ready == 0) {
         close(fd);

@@ -596,14 +596,13 @@ VolumeMapResult map_from_both_starts(const TetMeshData& input, const BoundaryMap
   }
 }
 
+// The share of the time left that the interior remesh may take: the rest maps the remeshed source
+// (docs/mapping.md §8 step 11).
+constexpr double kRemeshTimeShare = 0.5;
+
 // An uncertified result gets another run (on the remeshed source, or continuing after a refused
 // remesh) when the map may exist at some refinement and at least kMinRestartShare of the limit is
 // left.
-// The share of the time left that the interior remesh may take: the rest maps the remeshed source.
-// TetGen took 0.2-1.6 s on the sets' 8k-38k-tet remeshes, but 39 s on one 64k-tet coarse thin
-// shape, which left its run 10 s over a 60 s limit before it was bounded.
-constexpr double kRemeshTimeShare = 0.5;
-
 bool worth_another_run(const VolumeMapResult& r, const TimeBudget& total) {
   if (r.certified || r.feasibility.infeasible_with_any_refinement()) return false;
   return !total.limited() || total.remaining() >= kMinRestartShare * total.limit_seconds();
@@ -665,7 +664,7 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
   TetMeshData remeshed;
   std::string problem;
   try {
-    remeshed = options.remesh_interior(input, total.limited() ? kRemeshTimeShare * total.remaining() : 0);
+    remeshed = options.remesh_interior(input, total.option_seconds(kRemeshTimeShare));
     problem = interior_remesh_problem(input, remeshed);
   } catch (const std::exception& e) {
     problem = e.what();

@@ -19,8 +19,7 @@ struct InteriorRemeshOptions {
   // +12 % and gave every untangler interior vertices to move (docs/mapping.md §8 step 11).
   double quality = 3.0;
   // > 0: both TetGen attempts together stop after this long, and remesh_interior throws
-  // Error(Failed). TetGen cannot be interrupted, so it runs in a child that is killed then: on the
-  // 64k-tet coarse fins of the thin_coarse set with 4 subdivisions it ran 39 s.
+  // Error(Failed). TetGen cannot be interrupted: it runs in a child that is killed then.
   double time_limit_seconds = 0;
 };
 
