@@ -12,13 +12,27 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
+#include <utility>
+#include <vector>
 
 namespace volmap {
 
 namespace {
 
 bool contains(const std::vector<TetId>& sorted, TetId t) { return std::binary_search(sorted.begin(), sorted.end(), t); }
+
+// The vertices of the tets of `region`, sorted, each once.
+std::vector<std::uint32_t> region_vertices(const TetMesh& mesh, const std::vector<TetId>& region) {
+  std::vector<std::uint32_t> out;
+  out.reserve(4 * region.size());
+  for (TetId t : region)
+    for (VertexId x : mesh.tet_vertices(t)) out.push_back(x.idx());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
 
 // A region with an admissible cone: ∂R's faces, the R tet behind each, and the apex.
 struct ConePlan {
@@ -35,22 +49,24 @@ bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
   plan.faces.clear();
   plan.parents.clear();
   double worst = std::numeric_limits<double>::infinity();
-  std::set<std::uint32_t> on_boundary, all;
+  std::vector<std::uint32_t> on_boundary;
   for (TetId t : plan.region) {
     const auto tv = mesh.tet_vertices(t);
     worst = std::min(worst, tet_shape(mesh.vertex_position(tv[0]), mesh.vertex_position(tv[1]), mesh.vertex_position(tv[2]),
                                       mesh.vertex_position(tv[3])));
     for (int i = 0; i < 4; ++i) {
-      all.insert(tv[i].idx());
       const HalfFaceId o = mesh.half_face_opposite(HalfFaceId(t, i));
       if (o.is_valid() && contains(plan.region, o.tet())) continue;
       const auto f = mesh.half_face_vertices(HalfFaceId(t, i));
       plan.faces.push_back(f);
       plan.parents.push_back(t);
-      for (VertexId x : f) on_boundary.insert(x.idx());
+      for (VertexId x : f) on_boundary.push_back(x.idx());
     }
   }
-  if (on_boundary.size() != all.size()) return false;  // a vertex strictly inside R would be lost
+  std::sort(on_boundary.begin(), on_boundary.end());
+  on_boundary.erase(std::unique(on_boundary.begin(), on_boundary.end()), on_boundary.end());
+  // a vertex strictly inside R would be lost
+  if (on_boundary.size() != region_vertices(mesh, plan.region).size()) return false;
   std::vector<double> triangles;
   triangles.reserve(9 * plan.faces.size());
   for (const auto& f : plan.faces)
@@ -111,10 +127,18 @@ bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chord
   if (!mesh.vertex_is_boundary(VertexId(seed))) return false;
   std::set<std::size_t> taken;  // chords the region takes away
   long long beaten = 0;         // what they would cost otherwise
+  // chords(v) once per vertex: nothing is edited before the commit, so the answers stand (each
+  // call may walk vertex stars to find the chords; at a hub of a coarse mesh that was most of B0).
+  std::map<std::uint32_t, std::vector<std::pair<std::size_t, long long>>> chords_at;
+  auto chords_of = [&](std::uint32_t v) -> const std::vector<std::pair<std::size_t, long long>>& {
+    auto it = chords_at.find(v);
+    if (it == chords_at.end()) it = chords_at.emplace(v, chords(v)).first;
+    return it->second;
+  };
   // The chords at v not taken yet, and what they cost.
   auto gain = [&](std::uint32_t v, bool take) {
     long long g = 0;
-    for (const auto& [id, cost] : chords(v)) {
+    for (const auto& [id, cost] : chords_of(v)) {
       if (taken.count(id)) continue;
       g += cost;
       if (take) taken.insert(id);
@@ -129,15 +153,14 @@ bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chord
     // The boundary vertex of R with the most costly chords not taken yet.
     std::uint32_t next = kInvalidIndex;
     long long next_gain = -1;
-    for (TetId t : best.region)
-      for (VertexId x : mesh.tet_vertices(t)) {
-        if (members.count(x.idx()) || refused.count(x.idx()) || !mesh.vertex_is_boundary(x)) continue;
-        const long long g = gain(x.idx(), false);
-        if (g > next_gain || (g == next_gain && x.idx() < next)) {
-          next = x.idx();
-          next_gain = g;
-        }
+    for (const std::uint32_t x : region_vertices(mesh, best.region)) {
+      if (members.count(x) || refused.count(x) || !mesh.vertex_is_boundary(VertexId(x))) continue;
+      const long long g = gain(x, false);
+      if (g > next_gain || (g == next_gain && x < next)) {
+        next = x;
+        next_gain = g;
       }
+    }
     if (next == kInvalidIndex) break;
     std::vector<TetId> grown = merged(best.region, star_of(mesh, next));
     ConePlan plan;

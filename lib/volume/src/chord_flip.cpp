@@ -80,20 +80,20 @@ class RingTriangulator {
   bool admissible_diagonal(int i, int j) {
     const std::uint32_t x = r_[i], y = r_[j];
     if (rules_.edge_blocks(x, y) || rules_.face_image_blocks(va_, x, y) || rules_.face_image_blocks(vb_, x, y)) return false;
-    const std::vector<std::uint32_t>& nx = neighbours(i);
-    return !std::binary_search(nx.begin(), nx.end(), y);
+    return !(ring_neighbours(i) & (1u << j));
   }
 
-  // The vertices sharing a tet with ring[i], sorted (one star walk per ring vertex, on demand).
-  const std::vector<std::uint32_t>& neighbours(int i) {
-    std::vector<std::uint32_t>& out = neighbours_[std::size_t(i)];
-    if (!out.empty()) return out;
+  // Bit j set iff ring[j] shares a tet with ring[i] (one star walk per ring vertex, on demand; the
+  // ring has at most 32 vertices, see remove_chord_edge).
+  std::uint32_t ring_neighbours(int i) {
+    std::uint32_t& mask = neighbours_[std::size_t(i)];
+    if (mask & kKnown) return mask;
+    mask = kKnown;
     mesh_.vertex_star(VertexId(r_[i]), star_);
     for (TetId s : star_)
-      for (VertexId v : mesh_.tet_vertices(s)) out.push_back(v.idx());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
+      for (VertexId v : mesh_.tet_vertices(s))
+        if (const int p = position(v.idx()); p < n_) mask |= 1u << p;
+    return mask;
   }
 
   // For each side (ring[i], ring[i+1]): is the tet across its face with va (with vb) a fixed
@@ -137,18 +137,23 @@ class RingTriangulator {
   std::vector<std::uint32_t> r_;
   std::vector<std::uint8_t> bad_a_, bad_b_;
   double floor_ = 0;
-  std::vector<std::vector<std::uint32_t>> neighbours_;
+  static constexpr std::uint32_t kKnown = 1u << 31;  // ring_neighbours computed (n_ <= 31)
+  std::vector<std::uint32_t> neighbours_;
   std::vector<TetId> star_;
 };
 
 }  // namespace
 
-bool remove_chord_edge(TetMesh& mesh, const ChordRules& rules, std::uint32_t a, std::uint32_t b, int max_ring) {
+bool remove_chord_edge(TetMesh& mesh, const ChordRules& rules, std::uint32_t a, std::uint32_t b, int max_ring, TetId hint) {
   int la = -1, lb = -1;
-  const TetId t = mesh.find_edge(VertexId(a), VertexId(b), &la, &lb);
+  if (hint.is_valid() && hint.idx() < mesh.num_tet_slots() && mesh.tet_is_live(hint)) {
+    la = mesh.tet_local_index(hint, VertexId(a));
+    lb = mesh.tet_local_index(hint, VertexId(b));
+  }
+  const TetId t = la >= 0 && lb >= 0 ? hint : mesh.find_edge(VertexId(a), VertexId(b), &la, &lb);
   if (!t.is_valid()) return false;
   std::size_t degree = 0;
-  if (!mesh.edge_star(t, la, lb, [&degree](TetId) { ++degree; }) || degree > std::size_t(max_ring)) return false;
+  if (!mesh.edge_star(t, la, lb, [&degree](TetId) { ++degree; }) || degree > std::size_t(std::min(max_ring, 31))) return false;
   const std::vector<std::array<int, 3>> triangles = RingTriangulator(mesh, rules, t, la, lb).solve();
   if (triangles.empty()) return false;
   mesh.remove_edge(t, la, lb, triangles);

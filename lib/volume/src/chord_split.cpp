@@ -209,7 +209,7 @@ ChordSplitResult remove_blocking_chords(TetMesh& mesh, const ChordRules& rules, 
       gone = true;
       return false;
     }
-    if (remove_chord_edge(mesh, rules, e.v[0], e.v[1])) {
+    if (remove_chord_edge(mesh, rules, e.v[0], e.v[1], kChordRingLimit, e.hint)) {
       stamps.edited(around, mesh);
       ++r.edges_removed;
       return true;

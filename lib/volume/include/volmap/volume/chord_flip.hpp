@@ -19,8 +19,11 @@ namespace volmap {
 // Removes the interior edge (a, b) by the admissible triangulation of its ring whose worst new tet
 // has the best shape (volume over the cube of the RMS edge length, in double; dynamic programming
 // over the ring polygon). Returns false, leaving the mesh untouched, when (a, b) is not an interior
-// edge, its ring has more than max_ring vertices, or no triangulation is admissible.
-bool remove_chord_edge(TetMesh& mesh, const ChordRules& rules, std::uint32_t a, std::uint32_t b, int max_ring = 12);
+// edge, its ring has more than max_ring (at most 31) vertices, or no triangulation is admissible. `hint`: a tet
+// that may hold the edge (checked; otherwise the edge is searched from a's star).
+inline constexpr int kChordRingLimit = 12;  // remove_chord_edge's default max_ring
+bool remove_chord_edge(TetMesh& mesh, const ChordRules& rules, std::uint32_t a, std::uint32_t b, int max_ring = kChordRingLimit,
+                       TetId hint = TetId::kInvalid);
 
 // Replaces the two tets on the interior face (a, b, c) by the three around the edge joining their
 // apexes, when admissible. Returns false, leaving the mesh untouched, otherwise.
