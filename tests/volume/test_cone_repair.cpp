@@ -15,6 +15,7 @@
 #include <volmap/testing/generate.hpp>
 
 #include "map_test_meshes.hpp"
+#include "refinement_checks.hpp"
 #include "mesh_test_util.hpp"
 #include "test_support.hpp"
 
@@ -36,40 +37,9 @@
 
 namespace {
 
-std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const volmap::TetMeshData& m) {
-  std::vector<std::array<std::uint32_t, 3>> out;
-  for (auto hf : volmap::boundary_half_faces(m)) {
-    auto f = volmap::half_face_vertices(m, hf);
-    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());  // keeps the orientation
-    out.push_back(f);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
+using refinement_checks::check_refinement;
 
 int grid_id(int n, int i, int j, int k) { return (i * (n + 1) + j) * (n + 1) + k; }
-
-// The repaired pair is a valid refinement: original vertices kept bit-exactly, exact positive source
-// and target, same oriented boundary triangles, boundary targets untouched, manifold genus-0 mesh.
-void check_refinement(const volmap::TetMeshData& before, const std::vector<double>& target_before, const std::vector<std::uint8_t>& bnd_before,
-                      const volmap::TetMeshData& after, const std::vector<double>& target_after, const std::vector<std::uint8_t>& bnd_after) {
-  REQUIRE(after.num_vertices() >= before.num_vertices());
-  REQUIRE(target_after.size() == after.xyz.size());
-  REQUIRE(bnd_after.size() == after.num_vertices());
-  CHECK(std::equal(before.xyz.begin(), before.xyz.end(), after.xyz.begin()));
-  for (std::size_t v = 0; v < before.num_vertices(); ++v) {
-    CHECK(bnd_after[v] == bnd_before[v]);
-    if (bnd_before[v])
-      for (int i = 0; i < 3; ++i) CHECK(target_after[3 * v + i] == target_before[3 * v + i]);
-  }
-  for (std::size_t v = before.num_vertices(); v < after.num_vertices(); ++v) CHECK(bnd_after[v] == 0);
-  CHECK(volmap::count_nonpositive(after.xyz, after.tets) == 0);
-  CHECK(volmap::count_nonpositive(target_after, after.tets) == 0);
-  CHECK(boundary_triangles(after) == boundary_triangles(before));
-  CHECK(after.tet_labels.size() == after.num_tets());
-  const auto report = volmap::check_tet_mesh(after);
-  for (const auto& c : report.checks) CHECK_MESSAGE(c.passed, c.key << ": " << c.detail);
-}
 
 // A Kuhn grid with its boundary flags and a target to displace (…0: the state before the repair),
 // and a fresh copy repaired by repair() (m, bnd, target: the state after).

@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 namespace volmap {
@@ -1110,6 +1111,43 @@ class ConeRepairer {
     return PatchOutcome::applied;
   }
 
+ public:
+  // R = every live tet: its patch, when ∂M is a sphere with strict kernel points in both spaces
+  // (whole_mesh_cone). Nothing is grown; the budget is unlimited.
+  ConeRepairResult patch_whole_mesh() {
+    res_.tets_before = mesh_.num_tets();
+    const std::size_t nv0 = mesh_.num_vertices();
+    clear_region();
+    for (std::size_t t = 0; t < mesh_.num_tet_slots(); ++t)
+      if (mesh_.tet_is_live(TetId(std::uint32_t(t)))) add_to_region(std::uint32_t(t));
+    region_boundary();
+    res_.attempts = 1;
+    res_.failed_clusters = 1;
+    if (!region_is_ball()) {
+      ++res_.failures.not_ball;
+    } else {
+      std::vector<double> tri_t, tri_s;
+      face_triangles(tri_t, tri_s);
+      double p[3], q[3];
+      const Kernels k = kernel_points(tri_t, tri_s, p, q);
+      if (!k.ok_t) ++res_.failures.last_no_target;
+      else if (!k.ok_s) ++res_.failures.last_no_source;
+      else {
+        const TimeBudget patch_clock;
+        if (apply_patch(p, q) == PatchOutcome::applied) {
+          res_.patches = 1;
+          res_.failed_clusters = 0;
+          res_.max_region = region_.size();
+        }
+        res_.seconds_patch = patch_clock.elapsed();
+      }
+    }
+    res_.tets_after = mesh_.num_tets();
+    res_.vertices_added = mesh_.num_vertices() - nv0;
+    return res_;
+  }
+
+ private:
   // Grows R for the cluster, then applies its patch; while the patch would exceed the budget, R
   // absorbs free ∂R vertices (a larger ball's cones replace more tets than they add).
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {
@@ -1150,6 +1188,15 @@ void widen_growth_limits(ConeRepairOptions& options, int times) {
   }
 }
 
+ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked) {
+  const TimeBudget setup_clock;
+  ConeRepairer repairer(source, target, locked, ConeRepairOptions{});
+  const double setup = setup_clock.elapsed();
+  ConeRepairResult res = repairer.patch_whole_mesh();
+  res.seconds_setup = setup;
+  return res;
+}
+
 ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
                              const ConeRepairOptions& options) {
   const TimeBudget setup_clock;
@@ -1160,13 +1207,18 @@ ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const Ve
   return res;
 }
 
-ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
-                             const ConeRepairOptions& options) {
+namespace {
+
+// Runs `repair` on a TetMesh built from flat arrays and writes the compacted result back (see the
+// flat-array cone_repair in cone_repair.hpp); the arrays stay as given when nothing was patched.
+template <class Repair>
+ConeRepairResult on_flat_arrays(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+                                const char* who, Repair&& repair) {
   const std::size_t nv = source.num_vertices();
   if (source.tets.size() != 4 * source.num_tets() || locked.size() != nv || target_xyz.size() != source.xyz.size())
-    throw Error(ErrorKind::BadInput, "", 0, "cone_repair: inconsistent array sizes");
+    throw Error(ErrorKind::BadInput, "", 0, std::string(who) + ": inconsistent array sizes");
   for (std::uint32_t v : source.tets)
-    if (v >= nv) throw Error(ErrorKind::BadInput, "", 0, "cone_repair: tet vertex id out of range");
+    if (v >= nv) throw Error(ErrorKind::BadInput, "", 0, std::string(who) + ": tet vertex id out of range");
   TetMesh mesh(source);
   PositionProperty target(mesh);
   VertexProperty<std::uint8_t> locked_property(mesh);
@@ -1174,7 +1226,7 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& loc
     for (int i = 0; i < 3; ++i) target.data()[v][i] = target_xyz[3 * v + i];
     locked_property.data()[v] = locked[v];
   }
-  const ConeRepairResult res = cone_repair(mesh, target, locked_property, options);
+  const ConeRepairResult res = repair(mesh, target, locked_property);
   if (res.patches == 0) return res;  // nothing changed: the arrays stay as given
   mesh.compact();  // keeps the original vertex ids: patches delete no vertex
   const bool had_tet_labels = !source.tet_labels.empty(), had_vertex_labels = !source.vertex_labels.empty();
@@ -1188,6 +1240,23 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& loc
     locked[v] = locked_property.data()[v];
   }
   return res;
+}
+
+}  // namespace
+
+ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+                             const ConeRepairOptions& options) {
+  return on_flat_arrays(source, locked, target_xyz, "cone_repair",
+                        [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
+                          return cone_repair(mesh, target, lock, options);
+                        });
+}
+
+ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz) {
+  return on_flat_arrays(source, locked, target_xyz, "whole_mesh_cone",
+                        [](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
+                          return whole_mesh_cone(mesh, target, lock);
+                        });
 }
 
 }  // namespace volmap

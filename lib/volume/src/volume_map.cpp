@@ -11,7 +11,9 @@
 #include <volmap/core/time_budget.hpp>
 #include <volmap/volume/bad_tet_flip.hpp>
 #include <volmap/volume/bad_tet_split.hpp>
+#include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/map_stages.hpp>
+#include <volmap/volume/star_shaped_boundary.hpp>
 
 #include <tbb/global_control.h>
 
@@ -687,6 +689,69 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
   return better_run(std::move(first), std::move(second), remesh, total.elapsed());
 }
 
+// The share of the time limit held back for the whole-mesh cone (step 12) when ∂M is star-shaped
+// in both spaces: the patch of a 64k-tet mesh took 0.5 s, its exact check less.
+constexpr double kWholeConeShare = 0.05;
+
+// The runs from the input and, with a remesher, the runs on the remeshed source (steps 1–11).
+VolumeMapResult map_with_remesh(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
+  const bool remesh = options.allow_refinement && options.remesh_interior;
+  const TimeBudget total(options.time_limit_seconds);
+  VolumeMapOptions from_input = options;
+  if (remesh && total.limited()) from_input.time_limit_seconds = options.remesh_share * total.limit_seconds();
+  VolumeMapResult first = map_from_both_starts(input, map, from_input);  // validates the input (Error(BadInput))
+  if (!remesh || !worth_another_run(first, total)) return first;
+  return with_remeshed_source(std::move(first), input, map, options, total);
+}
+
+// Why whole_mesh_cone left the mesh as it was.
+std::string whole_cone_refusal(const ConeRepairResult& cr) {
+  const auto& f = cr.failures;
+  if (f.not_ball) return "the boundary is not a sphere";
+  if (f.last_no_target) return "the boundary image has no strict kernel point";
+  if (f.last_no_source) return "the source boundary has no strict kernel point";
+  if (f.reinsertion) return "an interior vertex could not be re-inserted";
+  return "a cone tet was not exactly positive";
+}
+
+// Step 12: an uncertified result's source becomes one cone patch over ∂M (interior vertices
+// re-inserted), kept when check_map certifies it exactly and the growth stays within
+// max_growth_last_resort; otherwise r stands. Stage "whole-mesh-cone" either way.
+VolumeMapResult with_whole_mesh_cone(VolumeMapResult r, const BoundaryMap& map, const VolumeMapOptions& options,
+                                     const TimeBudget& total) {
+  const TimeBudget clock;
+  TetMeshData source = r.source;
+  std::vector<double> target = r.target_xyz;
+  std::vector<std::uint8_t> locked = r.locked;
+  std::string refusal;
+  try {
+    const ConeRepairResult cr = whole_mesh_cone(source, locked, target);
+    const double growth = double(source.num_tets()) / double(std::max<std::size_t>(1, r.input_tets)) - 1.0;
+    if (cr.patches != 1) {
+      refusal = whole_cone_refusal(cr);
+    } else if (growth > options.max_growth_last_resort) {
+      refusal = "the cone patch grows the input by more than max_growth_last_resort";
+    } else {
+      TetMeshData mapped = source;
+      mapped.xyz = target;
+      if (!check_map(source, mapped, &map).certified()) refusal = "the exact check of the cone patch failed";
+    }
+  } catch (const Error& e) {
+    refusal = e.reason();
+  }
+  if (refusal.empty()) {
+    r.source = std::move(source);
+    r.target_xyz = std::move(target);
+    r.locked = std::move(locked);
+    r.certified = r.refined = true;
+    r.certified_by = "whole-mesh-cone";
+    r.nonpositive = 0;
+  }
+  r.stages.push_back({"whole-mesh-cone", clock.elapsed(), r.nonpositive, r.source.num_tets(), refusal});
+  r.seconds = total.elapsed();
+  return r;
+}
+
 }  // namespace
 
 VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
@@ -697,13 +762,15 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
     throw Error(ErrorKind::BadInput, "", 0, "tlc_time_share must be in [0, 1]");
   if (!(options.remesh_share > 0 && options.remesh_share <= 1))
     throw Error(ErrorKind::BadInput, "", 0, "remesh_share must be in (0, 1]");
-  const bool remesh = options.allow_refinement && options.remesh_interior;
   const TimeBudget total(options.time_limit_seconds);
-  VolumeMapOptions from_input = options;
-  if (remesh && total.limited()) from_input.time_limit_seconds = options.remesh_share * total.limit_seconds();
-  VolumeMapResult first = map_from_both_starts(input, map, from_input);  // validates the input (Error(BadInput))
-  if (!remesh || !worth_another_run(first, total)) return first;
-  return with_remeshed_source(std::move(first), input, map, options, total);
+  // Not for MapMethod::Tlc: the baseline reproduces the published method alone.
+  const bool cone_last = options.method == MapMethod::Ffm && options.allow_refinement && options.whole_mesh_cone &&
+                         boundary_star_shaped_in_both_spaces(input, map);
+  VolumeMapOptions runs = options;
+  if (cone_last && total.limited()) runs.time_limit_seconds = (1 - kWholeConeShare) * total.limit_seconds();
+  VolumeMapResult r = map_with_remesh(input, map, runs);  // validates the input (Error(BadInput))
+  if (!cone_last || r.certified) return r;
+  return with_whole_mesh_cone(std::move(r), map, options, total);
 }
 
 }  // namespace volmap

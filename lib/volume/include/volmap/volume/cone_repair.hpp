@@ -96,10 +96,19 @@ void widen_growth_limits(ConeRepairOptions& options, int times = 1);
 ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
                              const ConeRepairOptions& options = {});
 
-// The same on flat arrays: builds the TetMesh, repairs, and writes back the compacted result (tet
+// The last resort of docs/mapping.md §8 step 12: R = the whole mesh. When ∂M is star-shaped in both
+// spaces (strict kernel points p in the source, q in the target, verified exactly), every tet is
+// replaced by the cones from one apex over the boundary faces, with the interior vertices
+// re-inserted as in a patch: a valid map whatever the targets were. Otherwise (or when a
+// re-insertion fails) the mesh is left exactly as it was; failures says why (not_ball,
+// last_no_target, last_no_source, reinsertion, not_positive). patches is 1 when applied.
+ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked);
+
+// The same two on flat arrays: each builds the TetMesh, repairs, and writes back the compacted result (tet
 // order of the survivors kept, new tets after them or in freed slots; original vertex ids kept, new
 // vertices appended with locked 0). Throws Error(BadInput) on inconsistent arrays.
 ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                              const ConeRepairOptions& options = {});
+ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz);
 
 }  // namespace volmap

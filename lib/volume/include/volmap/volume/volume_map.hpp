@@ -125,6 +125,13 @@ struct VolumeMapOptions {
   // step 11).
   InteriorRemesher remesh_interior;
   double remesh_share = 0.5;
+  // Cascade with refinement, the last resort (docs/mapping.md §8 step 12): when ∂M is star-shaped in the
+  // source and in the map's image (star_shaped_boundary.hpp), every run above gets 95 % of the time
+  // limit, and if they end uncertified, the whole mesh becomes one cone patch from a kernel point
+  // (cone_repair.hpp, whole_mesh_cone): a certified map of poor quality, within
+  // max_growth_last_resort (certified_by "whole-mesh-cone", stage "whole-mesh-cone"). The patch
+  // runs even when the runs overran the limit (it costs about a second per 40k tets).
+  bool whole_mesh_cone = true;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
