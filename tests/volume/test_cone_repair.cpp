@@ -284,21 +284,23 @@ TEST_CASE("cone repair: bulk growth repairs the scrambled bar in fewer growth st
 }
 
 TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged") {
-  // TODO: corner (0,0,0) at 0.9 turned out NOT to be impossible (B1 certifies it; a kernel exists):
-  // needs a truly kernel-free case. Disabled until then.
-  if (false) {
+  SUBCASE("a mirrored map: no region has a target kernel point") {
+    // x -> 1 - x turns every tet inside out, boundary images included: each boundary face's inner
+    // side is then outside the cube, so a region with faces on two opposite sides of the cube has
+    // an empty target kernel, and the one cluster (every tet) must grow to those.
     const int n = 2;
     const auto m0 = map_test::kuhn_grid(n);
     auto bnd = map_test::grid_boundary_flags(n);
     auto target0 = m0.xyz;
-    for (int i = 0; i < 3; ++i) target0[i] = 0.9;  // corner (0,0,0) pushed through the cube
-    REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
+    for (std::size_t v = 0; v < m0.num_vertices(); ++v) target0[3 * v] = 1.0 - m0.xyz[3 * v];
+    REQUIRE(volmap::count_nonpositive(target0, m0.tets) == m0.num_tets());
     auto m = m0;
     auto target = target0;
     const auto bnd0 = bnd;
     const auto r = volmap::cone_repair(m, bnd, target);
     CHECK(r.failed_clusters > 0);
     CHECK(r.patches == 0);
+    CHECK(r.failures.reinsertion + r.failures.not_positive + r.failures.face_mismatch == 0);
     CHECK(m.tets == m0.tets);
     CHECK(m.xyz == m0.xyz);
     CHECK(m.tet_labels == m0.tet_labels);
