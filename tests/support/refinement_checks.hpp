@@ -1,6 +1,7 @@
 // refinement_checks.hpp — what every refinement of a mapped pair must keep (cone repair, the
 // whole-mesh cone): original vertices bit-exact, exact positive source and target, the same oriented
-// boundary triangles, boundary targets untouched, a valid manifold tet mesh.
+// boundary triangles, boundary targets untouched, a valid manifold tet mesh; and what a refused one
+// must keep: everything.
 #pragma once
 
 #include <volmap/check/tetmesh_checks.hpp>
@@ -49,6 +50,16 @@ inline void check_refinement(const volmap::TetMeshData& before, const std::vecto
   CHECK(after.tet_labels.size() == after.num_tets());
   const auto report = volmap::check_tet_mesh(after);
   for (const auto& c : report.checks) CHECK_MESSAGE(c.passed, c.key << ": " << c.detail);
+}
+
+// A refusal left everything exactly as it was: tets, labels, positions, targets, locked flags.
+inline void check_unchanged(const volmap::TetMeshData& before, const std::vector<double>& target_before, const std::vector<std::uint8_t>& bnd_before,
+                            const volmap::TetMeshData& after, const std::vector<double>& target_after, const std::vector<std::uint8_t>& bnd_after) {
+  CHECK(after.tets == before.tets);
+  CHECK(after.tet_labels == before.tet_labels);
+  CHECK(after.xyz == before.xyz);
+  CHECK(target_after == target_before);
+  CHECK(bnd_after == bnd_before);
 }
 
 }  // namespace refinement_checks
