@@ -117,7 +117,8 @@ struct VolumeMapOptions {
   // set, the runs from the input get remesh_share of the time limit; when they end uncertified
   // (and no certificate rules out every map) with at least a tenth of the limit left, the remeshed
   // source, once interior_remesh_problem accepts it, is mapped with the time left (from Tutte 3D;
-  // the remesher itself may take at most half of the time left, so that its source can be mapped),
+  // the remesher itself may take at most four fifths of the time left, so that its source can be
+  // mapped),
   // and the certified run, else the one with fewer non-positive tets, is returned. A remesh that
   // fails or is refused hands the time left to one more run from where the runs from the input
   // stopped (their source and map as its input and initial map, within what is left of the growth
