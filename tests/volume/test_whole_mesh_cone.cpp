@@ -60,6 +60,23 @@ TEST_CASE("whole-mesh cone: a scrambled convex grid becomes one cone patch, vali
   refinement_checks::check_refinement(m0, target0, bnd0, m, target, bnd);
 }
 
+TEST_CASE("whole-mesh cone: a time limit that passes during the re-insertions leaves everything as it was") {
+  const int n = 4;
+  const auto m0 = map_test::kuhn_grid(n);
+  const auto bnd0 = map_test::grid_boundary_flags(n);
+  const auto target0 = map_test::scrambled_target(m0, bnd0, 7, 0.4);
+  auto m = m0;
+  auto bnd = bnd0;
+  auto target = target0;
+  const auto r = volmap::whole_mesh_cone(m, bnd, target, 1e-12);  // over before the first re-insertion
+  CHECK(r.patches == 0);
+  CHECK(r.failures.time_limit == 1);
+  CHECK(r.failures.reinsertion + r.failures.not_positive == 0);
+  refinement_checks::check_unchanged(m0, target0, bnd0, m, target, bnd);
+  // The same without a limit is patched (the first test case).
+  CHECK(volmap::whole_mesh_cone(m, bnd, target).patches == 1);
+}
+
 TEST_CASE("whole-mesh cone: a U-shaped source has no kernel point, and everything is left as it was") {
   const auto m0 = u_shaped_grid();
   const auto bnd0 = boundary_flags(m0);

@@ -1003,13 +1003,15 @@ class ConeRepairer {
   }
 
   // The cones (F, w) over ∂R with R's other interior vertices re-inserted into `live`.
-  enum class PatchBuild { ok, reinsertion, not_positive };
+  enum class PatchBuild { ok, reinsertion, not_positive, time_limit };
   PatchBuild build_patch(std::uint32_t w, const std::vector<std::uint32_t>& interior, std::vector<LocalTet>& live) {
     std::vector<LocalTet> local;
     local.reserve(faces_.size() + 8 * interior.size());
     for (const auto& f : faces_) local.push_back({{f.v[0], f.v[1], f.v[2], w}, region_[f.inner_pos], false});
-    for (std::uint32_t v : interior)
+    for (std::uint32_t v : interior) {
+      if (budget_.expired()) return PatchBuild::time_limit;
       if (v != w && !insert_vertex(v, local)) return PatchBuild::reinsertion;
+    }
     live.clear();
     for (const auto& lt : local) {
       if (lt.dead) continue;
@@ -1078,13 +1080,15 @@ class ConeRepairer {
     std::vector<LocalTet> live;
     PatchBuild built = build_patch(w, interior, live);
     // A new apex in a degenerate spot (see moved_apex) is moved and the patch built again.
-    for (int k = 0; built != PatchBuild::ok && apex == kNone && k < kApexRetries; ++k) {
+    for (int k = 0; built != PatchBuild::ok && built != PatchBuild::time_limit && apex == kNone && k < kApexRetries; ++k) {
       if (!moved_apex(p, k, pending_p_)) continue;
       restore(PatchOutcome::refused);
       built = build_patch(w, interior, live);
     }
     if (built != PatchBuild::ok) {
-      ++(built == PatchBuild::reinsertion ? res_.failures.reinsertion : res_.failures.not_positive);
+      ++(built == PatchBuild::reinsertion  ? res_.failures.reinsertion
+         : built == PatchBuild::time_limit ? res_.failures.time_limit
+                                           : res_.failures.not_positive);
       return restore(PatchOutcome::refused);
     }
     const long long net = (long long)live.size() - (long long)region_.size();
@@ -1188,9 +1192,12 @@ void widen_growth_limits(ConeRepairOptions& options, int times) {
   }
 }
 
-ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked) {
+ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
+                                 double time_limit_seconds) {
   const TimeBudget setup_clock;
-  ConeRepairer repairer(source, target, locked, ConeRepairOptions{});
+  ConeRepairOptions options;
+  options.time_limit_seconds = time_limit_seconds;
+  ConeRepairer repairer(source, target, locked, options);
   const double setup = setup_clock.elapsed();
   ConeRepairResult res = repairer.patch_whole_mesh();
   res.seconds_setup = setup;
@@ -1252,10 +1259,11 @@ ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& loc
                         });
 }
 
-ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz) {
+ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+                                 double time_limit_seconds) {
   return on_flat_arrays(source, locked, target_xyz, "whole_mesh_cone",
-                        [](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
-                          return whole_mesh_cone(mesh, target, lock);
+                        [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
+                          return whole_mesh_cone(mesh, target, lock, time_limit_seconds);
                         });
 }
 

@@ -690,8 +690,10 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
 }
 
 // The share of the time limit held back for the whole-mesh cone (step 12) when ∂M is star-shaped
-// in both spaces: the patch of a 64k-tet mesh took 0.5 s, its exact check less.
+// in both spaces: the patches of the 34k–58k-tet plates and stars of thin_coarse-s4 took 0.1–0.5 s
+// alone (1.5 s beside two other runs); the patch may take the rest of the limit, or this share.
 constexpr double kWholeConeShare = 0.05;
+constexpr double kWholeConeMinSeconds = 1.0;
 
 // The runs from the input and, with a remesher, the runs on the remeshed source (steps 1–11).
 VolumeMapResult map_with_remesh(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
@@ -711,6 +713,7 @@ std::string whole_cone_refusal(const ConeRepairResult& cr) {
   if (f.last_no_target) return "the boundary image has no strict kernel point";
   if (f.last_no_source) return "the source boundary has no strict kernel point";
   if (f.reinsertion) return "an interior vertex could not be re-inserted";
+  if (f.time_limit) return "the time limit passed while re-inserting the interior vertices";
   return "a cone tet was not exactly positive";
 }
 
@@ -725,7 +728,11 @@ VolumeMapResult with_whole_mesh_cone(VolumeMapResult r, const BoundaryMap& map, 
   std::vector<std::uint8_t> locked = r.locked;
   std::string refusal;
   try {
-    const ConeRepairResult cr = whole_mesh_cone(source, locked, target);
+    // At least the share held back for it (and a second), also when the runs overran the limit.
+    const double seconds = total.limited()
+                               ? std::max({total.remaining(), kWholeConeShare * total.limit_seconds(), kWholeConeMinSeconds})
+                               : 0.0;
+    const ConeRepairResult cr = whole_mesh_cone(source, locked, target, seconds);
     const double growth = double(source.num_tets()) / double(std::max<std::size_t>(1, r.input_tets)) - 1.0;
     if (cr.patches != 1) {
       refusal = whole_cone_refusal(cr);

@@ -37,8 +37,9 @@ struct ConeRepairOptions {
   std::size_t bulk_growth_divisor = 0;
   int stall_growth_steps = 128;       // give up when the kernel LP slack has not improved for this many steps (0 = never)
   int max_rounds = 8;                 // recompute clusters and retry
-  // Wall-clock limit of the whole call (0 = none), checked before each cluster and at each growth
-  // step; a cluster interrupted by it is left exactly as it was (counted in failures.time_limit).
+  // Wall-clock limit of the whole call (0 = none), checked before each cluster, at each growth step
+  // and between the re-insertions of a patch; a cluster interrupted by it is left exactly as it was
+  // (counted in failures.time_limit).
   double time_limit_seconds = 0;
   // When the LP growth fails on a cluster with a face on ∂M: grow again towards fixed target points
   // just inside that face, then near its edges inside both it and the ∂M face across the edge
@@ -73,7 +74,7 @@ struct ConeRepairResult {
     std::size_t not_positive = 0;       // a new tet not exactly positive in both spaces
     std::size_t face_mismatch = 0;      // new tets do not close onto ∂R (replace_cavity refused them)
     std::size_t budget = 0;             // max_added_tets would be exceeded, also after absorbing ∂R vertices
-    std::size_t time_limit = 0;         // time_limit_seconds reached during growth
+    std::size_t time_limit = 0;         // time_limit_seconds reached during growth or a patch
   } failures;
   std::size_t attempts = 0, growth_steps = 0, lp_solves = 0;  // work counters
   std::size_t shelling_steps = 0;     // growth steps that kept a ball without the sphere check
@@ -100,15 +101,20 @@ ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const Ve
 // spaces (strict kernel points p in the source, q in the target, verified exactly), every tet is
 // replaced by the cones from one apex over the boundary faces, with the interior vertices
 // re-inserted as in a patch: a valid map whatever the targets were. Otherwise (or when a
-// re-insertion fails) the mesh is left exactly as it was; failures says why (not_ball,
-// last_no_target, last_no_source, reinsertion, not_positive). patches is 1 when applied.
-ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked);
+// re-insertion fails, or time_limit_seconds (0 = none) passes during the re-insertions) the mesh is
+// left exactly as it was; failures says why (not_ball, last_no_target, last_no_source, reinsertion,
+// not_positive, time_limit). patches is 1 when applied. Re-inserting thousands of vertices into one
+// cone makes ever flatter tets (no flips restore them): on Kuhn grids of 15³ cells and more a
+// re-insertion fails, and the work grows with interior vertices × tets.
+ConeRepairResult whole_mesh_cone(TetMesh& source, PositionProperty& target, const VertexProperty<std::uint8_t>& locked,
+                                 double time_limit_seconds = 0);
 
 // The same two on flat arrays: each builds the TetMesh, repairs, and writes back the compacted result (tet
 // order of the survivors kept, new tets after them or in freed slots; original vertex ids kept, new
 // vertices appended with locked 0). Throws Error(BadInput) on inconsistent arrays.
 ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                              const ConeRepairOptions& options = {});
-ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz);
+ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
+                                 double time_limit_seconds = 0);
 
 }  // namespace volmap

@@ -131,7 +131,8 @@ struct VolumeMapOptions {
   // limit, and if they end uncertified, the whole mesh becomes one cone patch from a kernel point
   // (cone_repair.hpp, whole_mesh_cone): a certified map of poor quality, within
   // max_growth_last_resort (certified_by "whole-mesh-cone", stage "whole-mesh-cone"). The patch
-  // runs even when the runs overran the limit (it costs about a second per 40k tets).
+  // may take what is left of the limit, at least the 5 % held back and at least a second (its
+  // re-insertions stop there).
   bool whole_mesh_cone = true;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
