@@ -84,7 +84,7 @@ class RingTriangulator {
   }
 
   // Bit j set iff ring[j] shares a tet with ring[i] (one star walk per ring vertex, on demand; the
-  // ring has at most 32 vertices, see remove_chord_edge).
+  // ring has at most 31 vertices, see remove_chord_edge).
   std::uint32_t ring_neighbours(int i) {
     std::uint32_t& mask = neighbours_[std::size_t(i)];
     if (mask & kKnown) return mask;
