@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -36,62 +37,69 @@ std::vector<std::uint8_t> boundary_flags(const volmap::TetMeshData& m) {
   return flags;
 }
 
+// A source, its boundary flags and a target (…0: before), and a copy the cone works on.
+struct ConeCase {
+  ConeCase(volmap::TetMeshData mesh, std::vector<std::uint8_t> boundary, std::vector<double> target)
+      : m0(std::move(mesh)), bnd0(std::move(boundary)), target0(std::move(target)), m(m0), bnd(bnd0), t(target0) {}
+  volmap::ConeRepairResult cone(double seconds = 0) { return volmap::whole_mesh_cone(m, bnd, t, seconds); }
+  const volmap::TetMeshData m0;
+  const std::vector<std::uint8_t> bnd0;
+  const std::vector<double> target0;
+  volmap::TetMeshData m;
+  std::vector<std::uint8_t> bnd;
+  std::vector<double> t;
+};
+
+// The 4³ convex grid, its interior moved by up to 1.6 spacings (boundary: an affine map).
+ConeCase scrambled_convex_grid() {
+  auto m = map_test::kuhn_grid(4);
+  auto bnd = map_test::grid_boundary_flags(4);
+  auto target = map_test::scrambled_target(m, bnd, 7, 0.4);
+  return ConeCase(std::move(m), std::move(bnd), std::move(target));
+}
+
 }  // namespace
 
 TEST_CASE("whole-mesh cone: a scrambled convex grid becomes one cone patch, valid in both spaces") {
-  const int n = 4;
-  const auto m0 = map_test::kuhn_grid(n);
-  const auto bnd0 = map_test::grid_boundary_flags(n);
-  const auto target0 = map_test::scrambled_target(m0, bnd0, 7, 0.4);  // interior moved by up to 1.6 spacings
-  REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 50);
-  CHECK(volmap::boundary_star_shaped_in_both_spaces(m0, map_test::boundary_map_of(bnd0, target0)));
-  auto m = m0;
-  auto bnd = bnd0;
-  auto target = target0;
-  const auto r = volmap::whole_mesh_cone(m, bnd, target);
+  ConeCase c = scrambled_convex_grid();
+  REQUIRE(volmap::count_nonpositive(c.target0, c.m0.tets) > 50);
+  CHECK(volmap::boundary_star_shaped_in_both_spaces(c.m0, map_test::boundary_map_of(c.bnd0, c.target0)));
+  const auto r = c.cone();
   CHECK(r.patches == 1);
   CHECK(r.failed_clusters == 0);
-  CHECK(r.max_region == m0.num_tets());
+  CHECK(r.max_region == c.m0.num_tets());
   // The cube is convex: every interior vertex sees all of ∂M, so one of them is the apex (no new
   // vertex); the cones over the 6·4·4·2 = 192 boundary triangles, plus at least 3 tets for each of
   // the other 26 interior vertices re-inserted.
   CHECK(r.vertices_added == 0);
-  CHECK(m.num_tets() >= 192 + 3 * 26);
-  refinement_checks::check_refinement(m0, target0, bnd0, m, target, bnd);
+  CHECK(c.m.num_tets() >= 192 + 3 * 26);
+  refinement_checks::check_refinement(c.m0, c.target0, c.bnd0, c.m, c.t, c.bnd);
 }
 
 TEST_CASE("whole-mesh cone: a time limit that passes during the re-insertions leaves everything as it was") {
-  const int n = 4;
-  const auto m0 = map_test::kuhn_grid(n);
-  const auto bnd0 = map_test::grid_boundary_flags(n);
-  const auto target0 = map_test::scrambled_target(m0, bnd0, 7, 0.4);
-  auto m = m0;
-  auto bnd = bnd0;
-  auto target = target0;
-  const auto r = volmap::whole_mesh_cone(m, bnd, target, 1e-12);  // over before the first re-insertion
+  ConeCase c = scrambled_convex_grid();
+  const auto r = c.cone(1e-12);  // over before the first re-insertion
   CHECK(r.patches == 0);
   CHECK(r.failures.time_limit == 1);
   CHECK(r.failures.reinsertion + r.failures.not_positive == 0);
-  refinement_checks::check_unchanged(m0, target0, bnd0, m, target, bnd);
+  refinement_checks::check_unchanged(c.m0, c.target0, c.bnd0, c.m, c.t, c.bnd);
   // The same without a limit is patched (the first test case).
-  CHECK(volmap::whole_mesh_cone(m, bnd, target).patches == 1);
+  CHECK(c.cone().patches == 1);
 }
 
 TEST_CASE("whole-mesh cone: a U-shaped source has no kernel point, and everything is left as it was") {
-  const auto m0 = u_shaped_grid();
-  const auto bnd0 = boundary_flags(m0);
-  REQUIRE(std::count(bnd0.begin(), bnd0.end(), 0) > 0);
-  auto target0 = m0.xyz;  // the identity: the image is the same U
-  CHECK_FALSE(volmap::boundary_star_shaped_in_both_spaces(m0, map_test::boundary_map_of(bnd0, target0)));
-  auto m = m0;
-  auto bnd = bnd0;
-  auto target = target0;
-  const auto r = volmap::whole_mesh_cone(m, bnd, target);
+  auto m = u_shaped_grid();
+  auto bnd = boundary_flags(m);
+  auto target = m.xyz;  // the identity: the image is the same U
+  ConeCase c(std::move(m), std::move(bnd), std::move(target));
+  REQUIRE(std::count(c.bnd0.begin(), c.bnd0.end(), 0) > 0);
+  CHECK_FALSE(volmap::boundary_star_shaped_in_both_spaces(c.m0, map_test::boundary_map_of(c.bnd0, c.target0)));
+  const auto r = c.cone();
   CHECK(r.patches == 0);
   CHECK(r.failed_clusters == 1);
   CHECK(r.failures.not_ball == 0);
   CHECK(r.failures.last_no_target == 1);  // the target is tried first
-  refinement_checks::check_unchanged(m0, target0, bnd0, m, target, bnd);
+  refinement_checks::check_unchanged(c.m0, c.target0, c.bnd0, c.m, c.t, c.bnd);
 }
 
 TEST_CASE("star-shaped boundary test: false, never a throw, on a map that does not fit the mesh") {
