@@ -23,22 +23,12 @@ namespace {
 
 bool contains(const std::vector<TetId>& sorted, TetId t) { return std::binary_search(sorted.begin(), sorted.end(), t); }
 
-// The vertices of the tets of `region`, sorted, each once.
-std::vector<std::uint32_t> region_vertices(const TetMesh& mesh, const std::vector<TetId>& region) {
-  std::vector<std::uint32_t> out;
-  out.reserve(4 * region.size());
-  for (TetId t : region)
-    for (VertexId x : mesh.tet_vertices(t)) out.push_back(x.idx());
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
 // A region with an admissible cone: ∂R's faces, the R tet behind each, and the apex.
 struct ConePlan {
   std::vector<TetId> region;
   std::vector<std::array<VertexId, 3>> faces;
   std::vector<TetId> parents;
+  std::vector<std::uint32_t> vertices;  // R's vertices, sorted (all on ∂R when admissible)
   double apex[3] = {0, 0, 0};
   long long cost() const { return (long long)faces.size() - (long long)region.size(); }
 };
@@ -49,7 +39,8 @@ bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
   plan.faces.clear();
   plan.parents.clear();
   double worst = std::numeric_limits<double>::infinity();
-  std::vector<std::uint32_t> on_boundary;
+  std::vector<std::uint32_t>& on_boundary = plan.vertices;
+  on_boundary.clear();
   for (TetId t : plan.region) {
     const auto tv = mesh.tet_vertices(t);
     worst = std::min(worst, tet_shape(mesh.vertex_position(tv[0]), mesh.vertex_position(tv[1]), mesh.vertex_position(tv[2]),
@@ -65,8 +56,9 @@ bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
   }
   std::sort(on_boundary.begin(), on_boundary.end());
   on_boundary.erase(std::unique(on_boundary.begin(), on_boundary.end()), on_boundary.end());
-  // a vertex strictly inside R would be lost
-  if (on_boundary.size() != region_vertices(mesh, plan.region).size()) return false;
+  for (TetId t : plan.region)  // a vertex strictly inside R would be lost
+    for (VertexId x : mesh.tet_vertices(t))
+      if (!std::binary_search(on_boundary.begin(), on_boundary.end(), x.idx())) return false;
   std::vector<double> triangles;
   triangles.reserve(9 * plan.faces.size());
   for (const auto& f : plan.faces)
@@ -153,7 +145,7 @@ bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chord
     // The boundary vertex of R with the most costly chords not taken yet.
     std::uint32_t next = kInvalidIndex;
     long long next_gain = -1;
-    for (const std::uint32_t x : region_vertices(mesh, best.region)) {
+    for (const std::uint32_t x : best.vertices) {
       if (members.count(x) || refused.count(x) || !mesh.vertex_is_boundary(VertexId(x))) continue;
       const long long g = gain(x, false);
       if (g > next_gain || (g == next_gain && x < next)) {
@@ -174,11 +166,7 @@ bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chord
   }
   if (best.cost() >= beaten || !commit(mesh, best)) return false;
   *added = best.cost();
-  if (touched) {  // R's vertices: all on ∂R
-    touched->clear();
-    for (const auto& f : best.faces)
-      for (VertexId x : f) touched->push_back(x.idx());
-  }
+  if (touched) *touched = best.vertices;  // all on ∂R
   return true;
 }
 

@@ -115,6 +115,41 @@ class ConeRepairer {
     return res;
   }
 
+  // R = every live tet: its patch, when ∂M is a sphere with strict kernel points in both spaces
+  // (whole_mesh_cone). Nothing is grown; the budget is unlimited.
+  ConeRepairResult patch_whole_mesh() {
+    res_.tets_before = mesh_.num_tets();
+    const std::size_t nv0 = mesh_.num_vertices();
+    clear_region();
+    for (std::size_t t = 0; t < mesh_.num_tet_slots(); ++t)
+      if (mesh_.tet_is_live(TetId(std::uint32_t(t)))) add_to_region(std::uint32_t(t));
+    region_boundary();
+    res_.attempts = 1;
+    res_.failed_clusters = 1;
+    if (!region_is_ball()) {
+      ++res_.failures.not_ball;
+    } else {
+      std::vector<double> tri_t, tri_s;
+      face_triangles(tri_t, tri_s);
+      double p[3], q[3];
+      const Kernels k = kernel_points(tri_t, tri_s, p, q);
+      if (!k.ok_t) ++res_.failures.last_no_target;
+      else if (!k.ok_s) ++res_.failures.last_no_source;
+      else {
+        const TimeBudget patch_clock;
+        if (apply_patch(p, q) == PatchOutcome::applied) {
+          res_.patches = 1;
+          res_.failed_clusters = 0;
+          res_.max_region = region_.size();
+        }
+        res_.seconds_patch = patch_clock.elapsed();
+      }
+    }
+    res_.tets_after = mesh_.num_tets();
+    res_.vertices_added = mesh_.num_vertices() - nv0;
+    return res_;
+  }
+
  private:
   // After a round that repaired nothing: every growth limit times search_widening (the growth is
   // deterministic, so a retry with the same limits fails the same way); false when no escalation is
@@ -1115,43 +1150,6 @@ class ConeRepairer {
     return PatchOutcome::applied;
   }
 
- public:
-  // R = every live tet: its patch, when ∂M is a sphere with strict kernel points in both spaces
-  // (whole_mesh_cone). Nothing is grown; the budget is unlimited.
-  ConeRepairResult patch_whole_mesh() {
-    res_.tets_before = mesh_.num_tets();
-    const std::size_t nv0 = mesh_.num_vertices();
-    clear_region();
-    for (std::size_t t = 0; t < mesh_.num_tet_slots(); ++t)
-      if (mesh_.tet_is_live(TetId(std::uint32_t(t)))) add_to_region(std::uint32_t(t));
-    region_boundary();
-    res_.attempts = 1;
-    res_.failed_clusters = 1;
-    if (!region_is_ball()) {
-      ++res_.failures.not_ball;
-    } else {
-      std::vector<double> tri_t, tri_s;
-      face_triangles(tri_t, tri_s);
-      double p[3], q[3];
-      const Kernels k = kernel_points(tri_t, tri_s, p, q);
-      if (!k.ok_t) ++res_.failures.last_no_target;
-      else if (!k.ok_s) ++res_.failures.last_no_source;
-      else {
-        const TimeBudget patch_clock;
-        if (apply_patch(p, q) == PatchOutcome::applied) {
-          res_.patches = 1;
-          res_.failed_clusters = 0;
-          res_.max_region = region_.size();
-        }
-        res_.seconds_patch = patch_clock.elapsed();
-      }
-    }
-    res_.tets_after = mesh_.num_tets();
-    res_.vertices_added = mesh_.num_vertices() - nv0;
-    return res_;
-  }
-
- private:
   // Grows R for the cluster, then applies its patch; while the patch would exceed the budget, R
   // absorbs free ∂R vertices (a larger ball's cones replace more tets than they add).
   bool repair_cluster(const std::vector<std::uint32_t>& cluster) {

@@ -13,7 +13,8 @@ namespace volmap {
 
 namespace {
 
-// The map's position of every vertex (empty when an id is out of range); `prescribed` marks them.
+// The map's position of every vertex (0 where it prescribes none); `prescribed` marks the ones it
+// does. False when the map's arrays disagree or an id is out of range.
 bool map_positions(const TetMeshData& source, const BoundaryMap& map, std::vector<double>& xyz, std::vector<bool>& prescribed) {
   const std::size_t nv = source.num_vertices();
   if (map.xyz.size() != 3 * map.vids.size()) return false;
