@@ -283,6 +283,48 @@ TEST_CASE("cone repair: bulk growth repairs the scrambled bar in fewer growth st
   CHECK(o.bulk_growth_divisor == 5);
 }
 
+// Bars whose first unit of length is mirrored (x -> 1 − x for x <= 1: those tets and boundary faces
+// inside out, the rest of the map the identity): a region with mirrored ∂M faces on two opposite
+// sides has no target kernel point, and no larger region has one. The growth stops as soon as the
+// ∂M faces of ∂R alone rule the kernel out; without that stop it runs on along the bar to its other
+// limits. Both must end the same way, the stop with less work.
+TEST_CASE("cone repair: the growth stops when the mesh boundary alone rules out a kernel, with the same outcome") {
+  auto mirrored = [](const volmap::TetMeshData& m) {
+    auto t = m.xyz;
+    for (std::size_t v = 0; v < m.num_vertices(); ++v)
+      if (m.xyz[3 * v] <= 1.0) t[3 * v] = 1.0 - m.xyz[3 * v];
+    return t;
+  };
+  auto boundary_flags = [](const volmap::TetMeshData& m) {
+    std::vector<std::uint8_t> flags(m.num_vertices(), 0);
+    for (std::uint32_t v : volmap::boundary_vertex_ids(m)) flags[v] = 1;
+    return flags;
+  };
+  auto all_cells = [](std::size_t, std::size_t, std::size_t) { return true; };
+  for (std::size_t width : {2, 3}) {
+    CAPTURE(width);
+    const auto m0 = volmap::generate_kuhn_grid(12, width, width, all_cells, 0.5);  // x in [0, 6]
+    const auto bnd0 = boundary_flags(m0);
+    const auto target0 = mirrored(m0);
+    REQUIRE(volmap::count_nonpositive(target0, m0.tets) > 0);
+    volmap::ConeRepairResult result[2];
+    volmap::TetMeshData mesh[2] = {m0, m0};
+    std::vector<double> target[2] = {target0, target0};
+    std::vector<std::uint8_t> bnd[2] = {bnd0, bnd0};
+    for (int stop = 0; stop < 2; ++stop) {
+      volmap::ConeRepairOptions o;
+      o.stop_at_mesh_boundary = stop == 1;
+      result[stop] = volmap::cone_repair(mesh[stop], bnd[stop], target[stop], o);
+      refinement_checks::check_unchanged(m0, target0, bnd0, mesh[stop], target[stop], bnd[stop]);
+      CHECK(result[stop].patches == 0);
+    }
+    CHECK(result[0].failed_clusters == result[1].failed_clusters);
+    CHECK(result[0].failures.mesh_boundary == 0);
+    CHECK(result[1].failures.mesh_boundary > 0);
+    CHECK(result[1].growth_steps < result[0].growth_steps);
+  }
+}
+
 TEST_CASE("cone repair: an impossible region fails and leaves the mesh unchanged") {
   SUBCASE("a mirrored map: no region has a target kernel point") {
     // x -> 1 - x turns every tet inside out, boundary images included: each boundary face's inner

@@ -83,6 +83,7 @@ class ConeRepairer {
   ConeRepairer(TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& locked, const ConeRepairOptions& options)
       : mesh_(mesh), tx_(target), locked_(locked), opt_(options), budget_(options.time_limit_seconds) {
     sync_slot_arrays();
+    vertex_boxes();
   }
 
   ConeRepairResult run() {
@@ -202,11 +203,33 @@ class ConeRepairer {
   std::vector<std::uint32_t> region_pos_;  // per tet slot: its index in region_ (while in R)
   std::vector<RegionFace> faces_;
   bool aimed_ = false;  // grow_region with a fixed target point
+  // Bounding boxes of every vertex in the target and the source (lo, hi). A patch's new positions
+  // lie in the hull of the old ones (the apex in a kernel of ∂R, re-inserted targets inside tets),
+  // so the boxes computed once stay valid.
+  double box_t_[6] = {0, 0, 0, 0, 0, 0}, box_s_[6] = {0, 0, 0, 0, 0, 0};
   // The apex of the patch being built, before it is committed.
   double pending_p_[3] = {0, 0, 0}, pending_q_[3] = {0, 0, 0};
   std::vector<TetId> star_;
 
   // ---- access -------------------------------------------------------------------------------
+  void vertex_boxes() {
+    for (int i = 0; i < 3; ++i) {
+      box_t_[i] = box_s_[i] = std::numeric_limits<double>::infinity();
+      box_t_[3 + i] = box_s_[3 + i] = -std::numeric_limits<double>::infinity();
+    }
+    for (std::size_t v = 0; v < mesh_.num_vertex_slots(); ++v) {
+      if (!mesh_.vertex_is_live(VertexId(std::uint32_t(v)))) continue;
+      const double* t = T(std::uint32_t(v));
+      const double* x = S(std::uint32_t(v));
+      for (int i = 0; i < 3; ++i) {
+        box_t_[i] = std::min(box_t_[i], t[i]);
+        box_t_[3 + i] = std::max(box_t_[3 + i], t[i]);
+        box_s_[i] = std::min(box_s_[i], x[i]);
+        box_s_[3 + i] = std::max(box_s_[3 + i], x[i]);
+      }
+    }
+  }
+
   void sync_slot_arrays() {
     in_region_.resize(mesh_.num_tet_slots(), 0);
     region_pos_.resize(mesh_.num_tet_slots(), 0);
@@ -628,7 +651,34 @@ class ConeRepairer {
   struct GrowthRun {
     bool count_failure;
     int last_fail = 0;  // 1 target kernel empty, 2 source kernel empty
+    std::size_t mesh_faces_checked = 0;  // ∂M faces of ∂R at the last mesh_boundary_blocks check
   };
+
+  // A face of ∂R on ∂M stays on ∂R however R grows (it has no tet behind it). When those faces
+  // alone have no common strict kernel point in the target or the source (the double LP's slack
+  // clearly negative, over the box of all vertices, which holds the kernel of any region), no region
+  // grown from R has one either: the growth stops. Checked each time their number has grown by a
+  // quarter (at least one) since the last check, so a growth run solves O(log) of these LPs.
+  bool mesh_boundary_blocks(GrowthRun& run) {
+    static constexpr double kClearlyNegative = -1e-9;
+    if (!opt_.stop_at_mesh_boundary) return false;
+    std::size_t on_mesh = 0;
+    for (const auto& f : faces_) on_mesh += !f.outside.is_valid();
+    if (on_mesh == 0 || on_mesh < run.mesh_faces_checked + std::max<std::size_t>(1, run.mesh_faces_checked / 4)) return false;
+    run.mesh_faces_checked = on_mesh;
+    std::vector<double> tri_t, tri_s;
+    for (const auto& f : faces_) {
+      if (f.outside.is_valid()) continue;
+      for (int k = 0; k < 3; ++k) {
+        tri_t.insert(tri_t.end(), T(f.v[k]), T(f.v[k]) + 3);
+        tri_s.insert(tri_s.end(), S(f.v[k]), S(f.v[k]) + 3);
+      }
+    }
+    double x[3], slack = 0;
+    res_.lp_solves += 2;
+    if (chebyshev_point_in_box(tri_t, box_t_, box_t_ + 3, x, &slack) && slack < kClearlyNegative) return true;
+    return chebyshev_point_in_box(tri_s, box_s_, box_s_ + 3, x, &slack) && slack < kClearlyNegative;
+  }
   bool growth_failed(const GrowthRun& run, std::size_t& counter) {
     if (!run.count_failure) return false;
     ++counter;
@@ -661,6 +711,7 @@ class ConeRepairer {
       ++res_.growth_steps;
       if (opt_.max_region_tets > 0 && region_.size() > opt_.max_region_tets) return growth_failed(run, fail.region_limit);
       region_boundary();
+      if (mesh_boundary_blocks(run)) return growth_failed(run, fail.mesh_boundary);
       if (aim) {  // exact visibility from aim first (before the ball repairs, which add whole stars)
         std::size_t added = 0;
         if (!grow_towards_aim(aim, &added)) return growth_failed(run, fail.no_growth_face);

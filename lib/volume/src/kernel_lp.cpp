@@ -100,6 +100,12 @@ bool chebyshev_point(const std::vector<double>& tri, double* q, double* slack) {
       lo[i] = std::min(lo[i], tri[3 * k + i]);
       hi[i] = std::max(hi[i], tri[3 * k + i]);
     }
+  return chebyshev_point_in_box(tri, lo, hi, q, slack);
+}
+
+bool chebyshev_point_in_box(const std::vector<double>& tri, const double* lo, const double* hi, double* q, double* slack) {
+  const std::size_t nf = tri.size() / 9;
+  if (nf == 0) return false;
   const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
   if (!(diag > 0)) return false;
   // Work in a frame centred at lo and scaled by 1/diag (conditioning).

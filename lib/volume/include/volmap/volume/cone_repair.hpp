@@ -45,6 +45,10 @@ struct ConeRepairOptions {
   // just inside that face, then near its edges inside both it and the ∂M face across the edge
   // (exact visibility), see docs/mapping.md §7.
   bool aimed_growth = true;
+  // Stop a growth once the ∂M faces of ∂R alone have no common kernel point in either space (no
+  // larger region can have one; counted in failures.mesh_boundary). Off: the growth runs on to its
+  // other limits, with the same outcome (tests compare the two).
+  bool stop_at_mesh_boundary = true;
   // When a round repairs no cluster, the limits above (stall, growth steps, region size) are
   // multiplied by search_widening and the round is repeated, at most search_escalations times: the
   // first ball with both kernels can lie far beyond the stall limit (docs/mapping.md §7).
@@ -68,6 +72,7 @@ struct ConeRepairResult {
     std::size_t stalled = 0;            // no LP progress for stall_growth_steps
     std::size_t not_ball = 0;           // ∂R not a sphere and nothing left to add
     std::size_t no_growth_face = 0;     // kernel empty but every violated face is on ∂M
+    std::size_t mesh_boundary = 0;      // the ∂M faces of ∂R alone have no kernel point: no larger R has one
     std::size_t last_no_target = 0;     // of the growth failures: the target kernel was empty last
     std::size_t last_no_source = 0;     //   ... the source kernel was empty last
     std::size_t reinsertion = 0;        // an interior vertex of R could not be re-inserted

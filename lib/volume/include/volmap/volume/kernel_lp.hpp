@@ -26,6 +26,13 @@ double inward_face_normal(const double* a, const double* b, const double* c, dou
 // double LP found an interior point).
 bool chebyshev_point(const std::vector<double>& triangles, double* q, double* slack);
 
+// The same LP with q in the box [lo, hi] (3 doubles each) instead of the triangles' bounding box,
+// the frame scaled by the box's diagonal. Every triangle vertex must lie in the box (the origin of
+// the frame is then feasible). For part of a closed surface whose other vertices lie in the box
+// too: a kernel point of the whole surface lies in its hull, hence in the box, so a clearly
+// negative slack here rules one out. A box with a zero diagonal returns false.
+bool chebyshev_point_in_box(const std::vector<double>& triangles, const double* lo, const double* hi, double* q, double* slack);
+
 // Exact: q strictly on the inner side of every triangle (fp: the caller's environment scope).
 bool verified_inside(const FpEnvironmentScope& fp, const std::vector<double>& triangles, const double* q);
 
