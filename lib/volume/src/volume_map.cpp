@@ -621,14 +621,15 @@ void report_against_input(VolumeMapResult& later, const VolumeMapResult& first) 
   later.refined = later.refined || first.refined;
 }
 
-// The time left after a failed remesh goes on from where the runs from the input stopped: their
-// (refined) source and map are the input and the initial map of one more run, whose growth budgets
-// are what is left of the input's. Returns the better of the two (growth, input counts and the
-// feasibility report of the input); `first` stands if the continuation fails.
-VolumeMapResult continue_first_run(VolumeMapResult first, const BoundaryMap& map, const VolumeMapOptions& options,
-                                   const TimeBudget& total, const VolumeMapStage& failed_remesh) {
+// The time left goes on from where an uncertified result stopped: its (refined) source and map are
+// the input and the initial map of one more run, whose growth budgets are what is left of the
+// input's. Returns the better of the two (growth, input counts and the feasibility report of the
+// input); `first` stands if the continuation fails. `separator` is the stage listed between them
+// (a failed remesh, or "continue").
+VolumeMapResult continue_run(VolumeMapResult first, const BoundaryMap& map, const VolumeMapOptions& options,
+                             const TimeBudget& total, const VolumeMapStage& separator) {
   auto keep_first = [&](const std::string& why) {
-    first.stages.push_back(failed_remesh);
+    first.stages.push_back(separator);
     if (!why.empty()) first.stages.push_back({"continue", 0, first.nonpositive, first.source.num_tets(), why});
     first.seconds = total.elapsed();
     return std::move(first);
@@ -650,18 +651,18 @@ VolumeMapResult continue_first_run(VolumeMapResult first, const BoundaryMap& map
     return keep_first("continuing the runs from the input failed: " + e.reason());
   }
   report_against_input(second, first);
-  return better_run(std::move(first), std::move(second), failed_remesh, total.elapsed());
+  return better_run(std::move(first), std::move(second), separator, total.elapsed());
 }
 
 // Maps the remeshed source with the time left; returns the better of `first` and that run (growth,
 // input counts and the feasibility report of the input). A remesh that fails or breaks its contract
-// is a stage failure: the time left continues the runs from the input (continue_first_run).
+// is a stage failure: the time left continues the runs from the input (continue_run).
 VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& input, const BoundaryMap& map,
                                      const VolumeMapOptions& options, const TimeBudget& total) {
   const TimeBudget remesh_clock;
   auto keep_first = [&](const std::string& why) {
     const VolumeMapStage failed{"remesh", remesh_clock.elapsed(), first.nonpositive, first.source.num_tets(), why};
-    return continue_first_run(std::move(first), map, options, total, failed);
+    return continue_run(std::move(first), map, options, total, failed);
   };
   TetMeshData remeshed;
   std::string problem;
@@ -695,6 +696,22 @@ VolumeMapResult with_remeshed_source(VolumeMapResult first, const TetMeshData& i
 constexpr double kWholeConeShare = 0.05;
 constexpr double kWholeConeMinSeconds = 1.0;
 
+// Runs end before the limit when every stage has stalled; the time left then continues from the
+// best result (continue_run), again while a continuation lowers the count and enough time is left:
+// more time never ends with more non-positive tets, and a long local solve the shares cut short
+// gets its chance (docs/mapping.md §8 step 13).
+VolumeMapResult continue_while_it_helps(VolumeMapResult r, const BoundaryMap& map, const VolumeMapOptions& options,
+                                        const TimeBudget& total) {
+  static constexpr int kMaxContinuations = 3;
+  for (int k = 0; k < kMaxContinuations && total.limited() && worth_another_run(r, total); ++k) {
+    const std::size_t before = r.nonpositive;
+    const VolumeMapStage separator{"continue", 0, r.nonpositive, r.source.num_tets(), ""};
+    r = continue_run(std::move(r), map, options, total, separator);
+    if (r.nonpositive >= before) break;
+  }
+  return r;
+}
+
 // The runs from the input and, with a remesher, the runs on the remeshed source (steps 1–11).
 VolumeMapResult map_with_remesh(const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options) {
   const bool remesh = options.allow_refinement && options.remesh_interior;
@@ -703,7 +720,7 @@ VolumeMapResult map_with_remesh(const TetMeshData& input, const BoundaryMap& map
   if (remesh && total.limited()) from_input.time_limit_seconds = options.remesh_share * total.limit_seconds();
   VolumeMapResult first = map_from_both_starts(input, map, from_input);  // validates the input (Error(BadInput))
   if (!remesh || !worth_another_run(first, total)) return first;
-  return with_remeshed_source(std::move(first), input, map, options, total);
+  return continue_while_it_helps(with_remeshed_source(std::move(first), input, map, options, total), map, options, total);
 }
 
 // Why whole_mesh_cone left the mesh as it was.
