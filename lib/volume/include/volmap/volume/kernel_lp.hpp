@@ -5,8 +5,9 @@
 // with n = (c − a) × (b − a). Triangles are 9 doubles each (three positions).
 // The LP maximises s subject to n̂_F·(q − a_F) >= s for every triangle F and q in the triangles'
 // bounding box, in a frame centred at the box corner and scaled by 1/diagonal: 4 variables, a dense
-// condensed-tableau simplex with Bland's rule. A double result is never trusted alone: a kernel
-// point is returned only after the exact check. The same simplex also solves the homogeneous
+// condensed-tableau simplex (Bland's entering rule, Harris's ratio test). A double result is never
+// trusted alone: a kernel point is returned only after the exact check. The same simplex also
+// solves the homogeneous
 // max-min LP of max_min_slack_in_box (any dimension), used to pick rows for exact certificates.
 #pragma once
 
