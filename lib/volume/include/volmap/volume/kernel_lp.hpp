@@ -7,8 +7,8 @@
 // bounding box, in a frame centred at the box corner and scaled by 1/diagonal: 4 variables, a dense
 // condensed-tableau simplex (Bland's entering rule, Harris's ratio test). A double result is never
 // trusted alone: a kernel point is returned only after the exact check. The same simplex also
-// solves the homogeneous
-// max-min LP of max_min_slack_in_box (any dimension), used to pick rows for exact certificates.
+// solves the homogeneous max-min LP of max_min_slack_in_box (any dimension), used to pick rows for
+// exact certificates.
 #pragma once
 
 #include <volmap/predicates.hpp>
