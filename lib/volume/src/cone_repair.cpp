@@ -528,16 +528,18 @@ class ConeRepairer {
     return added;
   }
 
-  // The faces of ∂R as LP triangles (9 doubles each) in target and source coordinates.
-  void face_triangles(std::vector<double>& tri_t, std::vector<double>& tri_s) const {
+  // The faces of ∂R (with mesh_boundary_only: those on ∂M) as LP triangles (9 doubles each) in
+  // target and source coordinates.
+  void face_triangles(std::vector<double>& tri_t, std::vector<double>& tri_s, bool mesh_boundary_only = false) const {
     tri_t.clear();
     tri_s.clear();
     for (const auto& f : faces_)
-      for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 3; ++i) {
-          tri_t.push_back(T(f.v[k])[i]);
-          tri_s.push_back(S(f.v[k])[i]);
-        }
+      if (!mesh_boundary_only || !f.outside.is_valid())
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < 3; ++i) {
+            tri_t.push_back(T(f.v[k])[i]);
+            tri_s.push_back(S(f.v[k])[i]);
+          }
   }
 
   // Kernel-LP progress of the current region (double only, for ranking growth candidates): the
@@ -667,13 +669,7 @@ class ConeRepairer {
     if (on_mesh == 0 || on_mesh < run.mesh_faces_checked + std::max<std::size_t>(1, run.mesh_faces_checked / 4)) return false;
     run.mesh_faces_checked = on_mesh;
     std::vector<double> tri_t, tri_s;
-    for (const auto& f : faces_) {
-      if (f.outside.is_valid()) continue;
-      for (int k = 0; k < 3; ++k) {
-        tri_t.insert(tri_t.end(), T(f.v[k]), T(f.v[k]) + 3);
-        tri_s.insert(tri_s.end(), S(f.v[k]), S(f.v[k]) + 3);
-      }
-    }
+    face_triangles(tri_t, tri_s, true);
     double x[3], slack = 0;
     res_.lp_solves += 2;
     if (chebyshev_point_in_box(tri_t, box_t_, box_t_ + 3, x, &slack) && slack < kClearlyNegative) return true;
