@@ -23,7 +23,9 @@
 // and, when this build has TetGen, the last resort remeshes the interior (§8 step 11; --no-remesh: never):
 // the runs from the input get half the time limit, an uncertified result the remeshed source with the rest.
 // When the boundary is star-shaped in both spaces, an uncertified result becomes one cone patch over the
-// whole boundary (§8 step 12; --no-whole-cone: never): certified, of poor quality.
+// whole boundary (§8 step 12; --no-whole-cone: never): certified, of poor quality. A result that grew
+// the mesh then gets fewer tets where a new fill valid in both spaces has fewer (§8 step 14;
+// --no-fewer-tets: never).
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
@@ -57,7 +59,8 @@ struct Args {
   double max_growth = 0.05, max_growth_cap = volmap::VolumeMapOptions{}.max_growth_last_resort, time_limit = 60;
   double quality_tol = volmap::VolumeMapOptions{}.quality_relative_decrease, tlc_share = volmap::VolumeMapOptions{}.tlc_time_share;
   double remesh_quality = 3.0;  // InteriorRemeshOptions::quality
-  bool no_refine = false, no_restart = false, no_remesh = false, no_whole_cone = false, no_quality = false, json = false;
+  bool no_refine = false, no_restart = false, no_remesh = false, no_whole_cone = false, no_fewer_tets = false, no_quality = false,
+       json = false;
   bool ffm_rest_first = false, no_local = false, no_kernel_descent = false, no_flips = false, no_local_rounds = false;
   int threads = 0, ffm_inner = 0;
 };
@@ -88,6 +91,10 @@ void add_options(CLI::App& app, Args& a) {
                "refinement: never replace the whole mesh by one cone patch (default: when the boundary is star-shaped in the "
                "source and in the map's image, the runs get 95 % of the time limit and an uncertified result becomes the "
                "cones from a kernel point over the boundary: certified, poor quality; certified_by whole-mesh-cone)");
+  app.add_flag("--no-fewer-tets", a.no_fewer_tets,
+               "refinement: keep the runs' result as it is (default: when it grew the mesh, vertices the refinement added are "
+               "taken back where a fill of their link valid in both spaces has fewer tets, and on inputs of at most 2000 tets "
+               "the whole boundary is re-filled when that has fewer tets; every change re-checked exactly)");
   app.add_option("--remesh-quality", a.remesh_quality, "refinement: TetGen radius-edge bound of the interior remesh (default 3)")
       ->check(volmap_tools::finite_range(1.0, 1e6));
   app.add_flag("--no-quality", a.no_quality, "skip the validity-preserving quality pass");
@@ -185,6 +192,7 @@ volmap::VolumeMapOptions mapping_options(const Args& a, bool refine, double seco
   opt.kernel_descent = !a.no_kernel_descent;
   opt.bad_tet_flips = !a.no_flips;
   opt.whole_mesh_cone = !a.no_whole_cone;
+  opt.fewer_tets = !a.no_fewer_tets;
 #ifdef VOLMAP_HAVE_TETGEN
   if (refine && !a.no_remesh)
     opt.remesh_interior = [quality = a.remesh_quality](const volmap::TetMeshData& source, double seconds) {

@@ -14,10 +14,13 @@
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/star_shaped_boundary.hpp>
+#include <volmap/volume/boundary_fill.hpp>
+#include <volmap/volume/vertex_removal.hpp>
 
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -734,46 +737,102 @@ std::string whole_cone_refusal(const ConeRepairResult& cr) {
   return "a cone tet was not exactly positive";
 }
 
+// A replacement of a result's arrays made by one of the last stages (steps 12 and 14), or why there
+// is none.
+struct ArraysEdit {
+  TetMeshData source;
+  std::vector<double> target_xyz;
+  std::vector<std::uint8_t> locked;
+  std::string refusal;
+};
+
+// Runs `make` (r -> ArraysEdit) and keeps its arrays when it made some and check_map certifies them
+// exactly: r is then certified (certified_by `certifier`, unless empty) and refined. Stage `stage`
+// either way, its failure the refusal (or the error `make` threw).
+template <class MakeEdit>
+VolumeMapResult with_certified_edit(VolumeMapResult r, const BoundaryMap& map, const TimeBudget& total, const std::string& stage,
+                                    const std::string& certifier, MakeEdit make) {
+  const TimeBudget clock;
+  ArraysEdit e;
+  try {
+    e = make(r);
+    if (e.refusal.empty()) {
+      TetMeshData mapped = e.source;
+      mapped.xyz = e.target_xyz;
+      if (!check_map(e.source, mapped, &map).certified()) e.refusal = "the exact check of the " + stage + " result failed";
+    }
+  } catch (const Error& err) {
+    e.refusal = err.reason();
+  }
+  if (e.refusal.empty()) {
+    r.source = std::move(e.source);
+    r.target_xyz = std::move(e.target_xyz);
+    r.locked = std::move(e.locked);
+    r.certified = r.refined = true;
+    if (!certifier.empty()) r.certified_by = certifier;
+    r.nonpositive = 0;
+  }
+  r.stages.push_back({stage, clock.elapsed(), r.nonpositive, r.source.num_tets(), e.refusal});
+  r.seconds = total.elapsed();
+  return r;
+}
+
 // Step 12: an uncertified result's source becomes one cone patch over ∂M (interior vertices
 // re-inserted), kept when check_map certifies it exactly and the growth stays within
 // max_growth_last_resort; otherwise r stands. Stage "whole-mesh-cone" either way.
 VolumeMapResult with_whole_mesh_cone(VolumeMapResult r, const BoundaryMap& map, const VolumeMapOptions& options,
                                      const TimeBudget& total) {
-  const TimeBudget clock;
-  TetMeshData source = r.source;
-  std::vector<double> target = r.target_xyz;
-  std::vector<std::uint8_t> locked = r.locked;
-  std::string refusal;
-  try {
+  return with_certified_edit(std::move(r), map, total, "whole-mesh-cone", "whole-mesh-cone", [&](const VolumeMapResult& run) {
+    ArraysEdit e{run.source, run.target_xyz, run.locked, ""};
     // At least the share held back for it (and a second), also when the runs overran the limit.
     const double seconds = total.limited()
                                ? std::max({total.remaining(), kWholeConeShare * total.limit_seconds(), kWholeConeMinSeconds})
                                : 0.0;
-    const ConeRepairResult cr = whole_mesh_cone(source, locked, target, seconds);
-    const double growth = double(source.num_tets()) / double(std::max<std::size_t>(1, r.input_tets)) - 1.0;
-    if (cr.patches != 1) {
-      refusal = whole_cone_refusal(cr);
-    } else if (growth > options.max_growth_last_resort) {
-      refusal = "the cone patch grows the input by more than max_growth_last_resort";
-    } else {
-      TetMeshData mapped = source;
-      mapped.xyz = target;
-      if (!check_map(source, mapped, &map).certified()) refusal = "the exact check of the cone patch failed";
-    }
-  } catch (const Error& e) {
-    refusal = e.reason();
-  }
-  if (refusal.empty()) {
-    r.source = std::move(source);
-    r.target_xyz = std::move(target);
-    r.locked = std::move(locked);
-    r.certified = r.refined = true;
-    r.certified_by = "whole-mesh-cone";
-    r.nonpositive = 0;
-  }
-  r.stages.push_back({"whole-mesh-cone", clock.elapsed(), r.nonpositive, r.source.num_tets(), refusal});
-  r.seconds = total.elapsed();
-  return r;
+    const ConeRepairResult cr = whole_mesh_cone(e.source, e.locked, e.target_xyz, seconds);
+    const double growth = double(e.source.num_tets()) / double(std::max<std::size_t>(1, run.input_tets)) - 1.0;
+    if (cr.patches != 1)
+      e.refusal = whole_cone_refusal(cr);
+    else if (growth > options.max_growth_last_resort)
+      e.refusal = "the cone patch grows the input by more than max_growth_last_resort";
+    return e;
+  });
+}
+
+// Step 14: each of its two stages may take what is left of the limit, at most kFillMaxSeconds and
+// at least kFillMinSeconds (the runs may have used it all).
+constexpr double kFillMaxSeconds = 2.0;
+constexpr double kFillMinSeconds = 0.25;
+
+double fill_seconds(const TimeBudget& total) {
+  return std::clamp(total.limited() ? total.remaining() : kFillMaxSeconds, kFillMinSeconds, kFillMaxSeconds);
+}
+
+// Step 14b: the vertices refinement added (ids from the input's vertex count on) whose link has a
+// fill with fewer tets, valid in both spaces, are taken back (vertex_removal.hpp); kept when
+// check_map certifies the result exactly. Stage "vertex-removal" either way.
+VolumeMapResult with_added_vertices_removed(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
+  const std::string certifier = r.certified_by;
+  return with_certified_edit(std::move(r), map, total, "vertex-removal", certifier, [&](const VolumeMapResult& run) {
+    ArraysEdit e{run.source, run.target_xyz, run.locked, ""};
+    VertexRemovalLimits limits;
+    limits.time_limit_seconds = fill_seconds(total);
+    if (remove_added_vertices(e.source, e.locked, e.target_xyz, std::uint32_t(input.num_vertices()), limits).removed == 0)
+      e.refusal = "no added vertex has a fill of its link with fewer tets";
+    return e;
+  });
+}
+
+// Step 14a: a new tetrahedralisation of ∂M valid in both spaces with fewer tets (boundary_fill.hpp)
+// replaces r when check_map certifies it exactly. Stage "boundary-fill" either way.
+VolumeMapResult with_boundary_fill(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
+  return with_certified_edit(std::move(r), map, total, "boundary-fill", "boundary-fill", [&](const VolumeMapResult& run) {
+    BoundaryFillLimits limits;
+    limits.time_limit_seconds = fill_seconds(total);
+    const CertifiedPoints points = run.certified ? CertifiedPoints{&run.source, &run.target_xyz} : CertifiedPoints{};
+    const std::size_t must_beat = run.certified ? run.source.num_tets() : std::numeric_limits<std::size_t>::max();
+    BoundaryFill fill = fill_boundary_with_fewer_tets(input, map, points, must_beat, limits);
+    return ArraysEdit{std::move(fill.source), std::move(fill.target_xyz), std::move(fill.locked), fill.found ? "" : fill.why_not};
+  });
 }
 
 }  // namespace
@@ -793,8 +852,21 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   VolumeMapOptions runs = options;
   if (cone_last && total.limited()) runs.time_limit_seconds = (1 - kWholeConeShare) * total.limit_seconds();
   VolumeMapResult r = map_with_remesh(input, map, runs);  // validates the input (Error(BadInput))
-  if (!cone_last || r.certified) return r;
-  return with_whole_mesh_cone(std::move(r), map, options, total);
+  if (cone_last && !r.certified) r = with_whole_mesh_cone(std::move(r), map, options, total);
+  if (options.method != MapMethod::Ffm || !options.allow_refinement || !options.fewer_tets) return r;
+  // The fill searches are heuristic: fewer points (after removals) can make one succeed that failed
+  // before, and the other way round, so a small input gets a fill before and after.
+  auto grew_or_failed = [&] { return !r.certified || r.source.num_tets() > input.num_tets(); };
+  const bool small = input.num_tets() <= options.boundary_fill_max_tets;
+  // An uncertified result gives no images to interior vertices: only a map fixing every vertex
+  // leaves the fill something to search.
+  const bool images = r.certified || map.size() == input.num_vertices();
+  if (grew_or_failed() && small && images) r = with_boundary_fill(std::move(r), input, map, total);
+  if (!grew_or_failed() || !r.certified) return r;
+  const std::size_t before = r.source.num_tets();
+  r = with_added_vertices_removed(std::move(r), input, map, total);
+  if (grew_or_failed() && small && r.source.num_tets() < before) r = with_boundary_fill(std::move(r), input, map, total);
+  return r;
 }
 
 }  // namespace volmap

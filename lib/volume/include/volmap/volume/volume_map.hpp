@@ -11,7 +11,9 @@
 // validity-preserving quality pass (§5, cascade only). In the
 // cascade every link-kernel and local-FFM stage that leaves bad tets is followed by the kernel
 // descent (§10). Uncertified runs get a restart from the other start (§8 step 10) and, with
-// refinement and a remesher, the whole pipeline again on a new interior (§8 step 11).
+// refinement and a remesher, the whole pipeline again on a new interior (§8 step 11); a result
+// that grew the input gets fewer tets where a fill on the same points is valid in both spaces
+// (§8 step 14).
 // The stages run on one MapState (map_state.hpp, map_stages.hpp); each is judged by the exact count
 // of non-positive tets and undone when it makes it worse (StageJudge). A result is certified only
 // when check_map (the exact check of the check wing) certifies the returned arrays.
@@ -134,6 +136,17 @@ struct VolumeMapOptions {
   // may take what is left of the limit, at least the 5 % held back and at least a second (its
   // re-insertions stop there).
   bool whole_mesh_cone = true;
+  // With refinement (MapMethod::Ffm), when the runs grew the mesh or ended uncertified: fewer tets
+  // (docs/mapping.md §8 step 14). On inputs of at most boundary_fill_max_tets tets a new
+  // tetrahedralisation of ∂M valid in both spaces with fewer tets is searched (boundary_fill.hpp:
+  // on the input's vertices at the images the map or the certified map gives them, the certified
+  // map's added points optional, or one interior point at a tet centroid) and replaces the result
+  // (certified_by "boundary-fill", stage "boundary-fill"); then, on a certified result of any size,
+  // the vertices refinement added whose link has a fill with fewer tets valid in both spaces are
+  // taken back (vertex_removal.hpp, stage "vertex-removal"), and a small input whose removals took
+  // tets back gets the fill search again. Every change is kept only when check_map certifies it.
+  bool fewer_tets = true;
+  std::size_t boundary_fill_max_tets = 2000;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
   // entries must equal the map's doubles bit-exactly (else Error(BadInput)). With refinement, the
   // chord-split vertices start at the average of their neighbours (local uniform Laplacian).
