@@ -179,7 +179,13 @@ class FillSearch {
     std::size_t fewest = std::numeric_limits<std::size_t>::max();
     std::uint64_t best_rank = 0;
     std::vector<std::pair<int, std::uint32_t>> options;
+    std::size_t scanned = 0;
     for (const auto& [key, f] : front_) {
+      // A large front's first scan computes every face's candidates: the clock is read within it.
+      if ((++scanned & 63) == 0 && limits_.time_limit_seconds > 0 && clock_.expired()) {
+        stopped_ = true;
+        return false;
+      }
       options.clear();
       for (std::uint32_t v : geometric_apexes(f)) {
         const int m = closes(f, v);
