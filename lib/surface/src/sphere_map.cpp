@@ -6,7 +6,7 @@
 // positive about k:
 //  - fattening: each point of a cone that is not positive about k moves (within half its shortest
 //    edge, on the sphere) to where the smallest distance from c and from k to its cones' planes is
-//    largest (a 3-variable LP), when every cone around it stays positive about c (exact);
+//    largest (a 3-variable LP, small_lp.hpp), when every cone around it stays positive about c (exact);
 //  - relaxation: each point moves to the projected mean of its neighbours when every cone around it
 //    stays positive about c (exact), which fattens slivers and evens the density;
 //  - re-centring: a projective automorphism of the ball (a hyperbolic translation in the Klein
@@ -21,6 +21,7 @@
 // does not balance, the map onto a regular tetrahedron (4 nodes and 6 arcs: a coarse surface needs
 // the fewest splits).
 #include <volmap/core/error.hpp>
+#include <volmap/core/small_lp.hpp>
 #include <volmap/predicates.hpp>
 #include <volmap/surface/surface_map.hpp>
 
@@ -52,44 +53,31 @@ constexpr int kSweepsPerRecentre = 5;
 constexpr int kStallSweeps = 400;
 constexpr int kMaxSweepsRefining = 2 * kMaxSweeps;
 
-// max t subject to s[j] + a[j]*x + b[j]*y >= t for every j and |x|, |y| <= box: the optimum of this
-// 3-variable LP has three tight constraints, found by enumerating triples (m is a vertex degree's
-// double, small). Returns {x, y, t}.
+// max t subject to s[j] + a[j]*x + b[j]*y >= t for every j and |x|, |y| <= box, by the dense simplex
+// of small_lp.hpp in shifted variables X = x + box, Y = y + box, T = t + t0 >= 0 (the origin feasible
+// for t0 = max_j (|a[j]| + |b[j]|) box - s[j], at least 0). Returns {x, y, t}; staying put
+// ({0, 0, min_j s[j]}) when the LP fails. Only ranks a move that is then verified exactly.
 std::array<double, 3> max_min_margin(const std::vector<std::array<double, 3>>& rows, double box) {
-  // Constraints as p . (x, y, t) <= d.
-  std::vector<std::array<double, 4>> c;
-  for (const auto& r : rows) c.push_back({-r[1], -r[2], 1.0, r[0]});
-  c.push_back({1, 0, 0, box});
-  c.push_back({-1, 0, 0, box});
-  c.push_back({0, 1, 0, box});
-  c.push_back({0, -1, 0, box});
-  std::array<double, 3> best{0, 0, std::numeric_limits<double>::infinity()};
-  for (const auto& r : rows) best[2] = std::min(best[2], r[0]);  // staying put
-  const std::size_t m = c.size();
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t j = i + 1; j < m; ++j)
-      for (std::size_t l = j + 1; l < m; ++l) {
-        const auto &p = c[i], &q = c[j], &r = c[l];
-        const double det = p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
-                           p[2] * (q[0] * r[1] - q[1] * r[0]);
-        if (std::fabs(det) < 1e-12) continue;
-        // Cramer's rule.
-        const double x = (p[3] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[3] * r[2] - q[2] * r[3]) +
-                          p[2] * (q[3] * r[1] - q[1] * r[3])) / det;
-        const double y = (p[0] * (q[3] * r[2] - q[2] * r[3]) - p[3] * (q[0] * r[2] - q[2] * r[0]) +
-                          p[2] * (q[0] * r[3] - q[3] * r[0])) / det;
-        const double t = (p[0] * (q[1] * r[3] - q[3] * r[1]) - p[1] * (q[0] * r[3] - q[3] * r[0]) +
-                          p[3] * (q[0] * r[1] - q[1] * r[0])) / det;
-        if (!(t > best[2])) continue;
-        bool feasible = true;
-        for (const auto& e : c)
-          if (e[0] * x + e[1] * y + e[2] * t > e[3] + 1e-12 * (1 + std::fabs(e[3]))) {
-            feasible = false;
-            break;
-          }
-        if (feasible) best = {x, y, t};
-      }
-  return best;
+  std::array<double, 3> stay{0, 0, std::numeric_limits<double>::infinity()};
+  for (const auto& r : rows) stay[2] = std::min(stay[2], r[0]);
+  if (rows.empty() || !(box > 0)) return stay;
+  double t0 = 0, reach = 0;
+  for (const auto& r : rows) {
+    t0 = std::max(t0, (std::fabs(r[1]) + std::fabs(r[2])) * box - r[0]);
+    reach = std::max(reach, std::fabs(r[0]) + (std::fabs(r[1]) + std::fabs(r[2])) * box);
+  }
+  // t - a x - b y <= s  <=>  -a X - b Y + T <= s + t0 - (a + b) box  (right side >= 0 by t0).
+  std::vector<double> A, b;
+  for (const auto& r : rows) {
+    A.insert(A.end(), {-r[1], -r[2], 1.0});
+    b.push_back(std::max(0.0, r[0] + t0 - (r[1] + r[2]) * box));
+  }
+  A.insert(A.end(), {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  b.insert(b.end(), {2 * box, 2 * box, t0 + reach});
+  double z[3];
+  if (!simplex_max(int(b.size()), 3, A, b, {0, 0, 1}, z)) return stay;
+  const std::array<double, 3> opt{z[0] - box, z[1] - box, z[2] - t0};
+  return opt[2] > stay[2] ? opt : stay;
 }
 
 // The image on the sphere as an OpenMesh surface: the boundary of the map's mesh with the image
