@@ -11,10 +11,10 @@
 #include <volmap/core/time_budget.hpp>
 #include <volmap/volume/bad_tet_flip.hpp>
 #include <volmap/volume/bad_tet_split.hpp>
+#include <volmap/volume/boundary_fill.hpp>
 #include <volmap/volume/cone_repair.hpp>
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/star_shaped_boundary.hpp>
-#include <volmap/volume/boundary_fill.hpp>
 #include <volmap/volume/vertex_removal.hpp>
 
 #include <tbb/global_control.h>
@@ -807,6 +807,19 @@ double fill_seconds(const TimeBudget& total) {
   return std::clamp(total.limited() ? total.remaining() : kFillMaxSeconds, kFillMinSeconds, kFillMaxSeconds);
 }
 
+// Step 14a: a new tetrahedralisation of ∂M valid in both spaces with fewer tets (boundary_fill.hpp)
+// replaces r when check_map certifies it exactly. Stage "boundary-fill" either way.
+VolumeMapResult with_boundary_fill(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
+  return with_certified_edit(std::move(r), map, total, "boundary-fill", "boundary-fill", [&](const VolumeMapResult& run) {
+    BoundaryFillLimits limits;
+    limits.time_limit_seconds = fill_seconds(total);
+    const CertifiedPoints points = run.certified ? CertifiedPoints{&run.source, &run.target_xyz} : CertifiedPoints{};
+    const std::size_t must_beat = run.certified ? run.source.num_tets() : std::numeric_limits<std::size_t>::max();
+    BoundaryFill fill = fill_boundary_with_fewer_tets(input, map, points, must_beat, limits);
+    return ArraysEdit{std::move(fill.source), std::move(fill.target_xyz), std::move(fill.locked), fill.found ? "" : fill.why_not};
+  });
+}
+
 // Step 14b: the vertices refinement added (ids from the input's vertex count on) whose link has a
 // fill with fewer tets, valid in both spaces, are taken back (vertex_removal.hpp); kept when
 // check_map certifies the result exactly. Stage "vertex-removal" either way.
@@ -822,17 +835,22 @@ VolumeMapResult with_added_vertices_removed(VolumeMapResult r, const TetMeshData
   });
 }
 
-// Step 14a: a new tetrahedralisation of ∂M valid in both spaces with fewer tets (boundary_fill.hpp)
-// replaces r when check_map certifies it exactly. Stage "boundary-fill" either way.
-VolumeMapResult with_boundary_fill(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
-  return with_certified_edit(std::move(r), map, total, "boundary-fill", "boundary-fill", [&](const VolumeMapResult& run) {
-    BoundaryFillLimits limits;
-    limits.time_limit_seconds = fill_seconds(total);
-    const CertifiedPoints points = run.certified ? CertifiedPoints{&run.source, &run.target_xyz} : CertifiedPoints{};
-    const std::size_t must_beat = run.certified ? run.source.num_tets() : std::numeric_limits<std::size_t>::max();
-    BoundaryFill fill = fill_boundary_with_fewer_tets(input, map, points, must_beat, limits);
-    return ArraysEdit{std::move(fill.source), std::move(fill.target_xyz), std::move(fill.locked), fill.found ? "" : fill.why_not};
-  });
+// Step 14 on the result of steps 1–12, when it grew the input or is uncertified. The fill searches
+// are heuristic: fewer points (after removals) can make one succeed that failed before, and the
+// other way round, so a small input gets a fill before and after the removals.
+VolumeMapResult with_fewer_tets(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const VolumeMapOptions& options,
+                                const TimeBudget& total) {
+  auto grew_or_failed = [&] { return !r.certified || r.source.num_tets() > input.num_tets(); };
+  const bool small = input.num_tets() <= options.boundary_fill_max_tets;
+  // An uncertified result gives interior vertices no images: only a map that fixes every vertex
+  // leaves the fill something to search.
+  const bool images = r.certified || map.size() == input.num_vertices();
+  if (grew_or_failed() && small && images) r = with_boundary_fill(std::move(r), input, map, total);
+  if (!grew_or_failed() || !r.certified) return r;
+  const std::size_t before = r.source.num_tets();
+  r = with_added_vertices_removed(std::move(r), input, map, total);
+  if (grew_or_failed() && small && r.source.num_tets() < before) r = with_boundary_fill(std::move(r), input, map, total);
+  return r;
 }
 
 }  // namespace
@@ -853,20 +871,8 @@ VolumeMapResult compute_volume_map(const TetMeshData& input, const BoundaryMap& 
   if (cone_last && total.limited()) runs.time_limit_seconds = (1 - kWholeConeShare) * total.limit_seconds();
   VolumeMapResult r = map_with_remesh(input, map, runs);  // validates the input (Error(BadInput))
   if (cone_last && !r.certified) r = with_whole_mesh_cone(std::move(r), map, options, total);
-  if (options.method != MapMethod::Ffm || !options.allow_refinement || !options.fewer_tets) return r;
-  // The fill searches are heuristic: fewer points (after removals) can make one succeed that failed
-  // before, and the other way round, so a small input gets a fill before and after.
-  auto grew_or_failed = [&] { return !r.certified || r.source.num_tets() > input.num_tets(); };
-  const bool small = input.num_tets() <= options.boundary_fill_max_tets;
-  // An uncertified result gives no images to interior vertices: only a map fixing every vertex
-  // leaves the fill something to search.
-  const bool images = r.certified || map.size() == input.num_vertices();
-  if (grew_or_failed() && small && images) r = with_boundary_fill(std::move(r), input, map, total);
-  if (!grew_or_failed() || !r.certified) return r;
-  const std::size_t before = r.source.num_tets();
-  r = with_added_vertices_removed(std::move(r), input, map, total);
-  if (grew_or_failed() && small && r.source.num_tets() < before) r = with_boundary_fill(std::move(r), input, map, total);
-  return r;
+  const bool fewer = options.method == MapMethod::Ffm && options.allow_refinement && options.fewer_tets;
+  return fewer ? with_fewer_tets(std::move(r), input, map, options, total) : r;
 }
 
 }  // namespace volmap
