@@ -115,6 +115,7 @@ class FillSearches {
     }
     f.source.tets.reserve(tets.size());
     for (std::uint32_t v : tets) f.source.tets.push_back(id[v]);
+    if (f.source.tets == input_.tets) f.source.tet_labels = input_.tet_labels;  // the input's own tets
     bound_ = f.source.num_tets();
     best_ = std::move(f);
   }

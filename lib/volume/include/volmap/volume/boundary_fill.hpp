@@ -14,8 +14,8 @@
 // tets as the input or a few more, where splits and cone patches added a third or more.
 // Conventions: a valid input and map (as compute_volume_map checks them); the result keeps the
 // input's vertex ids, the points it uses appended after them (in the certified map's order, or the
-// centroid point); tets VOLMAP-positive in both spaces; no tet labels (vertex labels: 0 for added
-// points).
+// centroid point); tets VOLMAP-positive in both spaces; no tet labels unless the fill is the input's
+// own tets (vertex labels: 0 for added points).
 #pragma once
 
 #include <volmap/core/mesh_data.hpp>
