@@ -34,14 +34,14 @@ namespace {
 using Face = std::array<std::uint32_t, 3>;
 
 // A triangular prism: bottom a_i = 0..2 at z = 0, top b_i = 3..5 at z = 1 turned by `twist`
-// radians; each side quad split by the diagonal (a_i, b_{i+1}) when `rising`, else (a_{i+1}, b_i).
-// Faces outward (the axis point (0, 0, 0.5) on their positive side).
+// radians; each side quad split by the diagonal (a_i, b_{i+1}). Faces outward (the axis point
+// (0, 0, 0.5) on their positive side).
 struct Prism {
   std::vector<double> xyz;
   std::vector<Face> faces;
 };
 
-Prism prism(double twist, bool rising) {
+Prism prism(double twist) {
   Prism p;
   const double pi = std::acos(-1.0);
   for (int level = 0; level < 2; ++level)
@@ -52,13 +52,8 @@ Prism prism(double twist, bool rising) {
   std::vector<Face> faces = {{0, 1, 2}, {3, 4, 5}};
   for (std::uint32_t i = 0; i < 3; ++i) {
     const std::uint32_t a0 = i, a1 = (i + 1) % 3, b0 = 3 + i, b1 = 3 + (i + 1) % 3;
-    if (rising) {
-      faces.push_back({a0, a1, b1});
-      faces.push_back({a0, b1, b0});
-    } else {
-      faces.push_back({a0, a1, b0});
-      faces.push_back({a1, b1, b0});
-    }
+    faces.push_back({a0, a1, b1});
+    faces.push_back({a0, b1, b0});
   }
   const double axis[3] = {0, 0, 0.5};
   for (Face f : faces) {
@@ -93,15 +88,11 @@ std::set<std::array<std::uint32_t, 3>> sorted_faces(const std::vector<Face>& fac
 // spaces (check_map with the target as the map of every vertex) and its boundary = the surface.
 void check_fill(const std::vector<Face>& surface, const std::vector<double>& source, const std::vector<double>& target,
                 const std::vector<std::uint32_t>& tets) {
+  // Vertices no tet uses (left-out optional points) would make the pair invalid: only the used ones,
+  // renumbered in order of first use.
   volmap::TetMeshData in, out;
-  in.xyz = source;
-  in.tets = tets;
-  out.xyz = target;
-  out.tets = tets;
-  // Vertices no tet uses (left-out optional points) would make the pair invalid: drop them.
   std::vector<std::uint32_t> id(source.size() / 3, UINT32_MAX);
-  in.xyz.clear();
-  out.xyz.clear();
+  in.tets = tets;
   for (std::uint32_t v : tets)
     if (id[v] == UINT32_MAX) {
       id[v] = std::uint32_t(in.xyz.size() / 3);
@@ -133,7 +124,7 @@ TEST_CASE("Steiner-free fill: Schönhardt's twisted prism has none (search exhau
   // The same faces (diagonals (a_i, b_{i+1})) turned by +30 and -30 degrees: one turn makes the
   // diagonals reflex (Schönhardt's polyhedron), the other convex.
   const double twist = std::acos(-1.0) / 6;
-  const Prism plus = prism(twist, true), minus = prism(-twist, true);
+  const Prism plus = prism(twist), minus = prism(-twist);
   REQUIRE(sorted_faces(plus.faces) == sorted_faces(minus.faces));
   REQUIRE(diagonals_reflex(plus) != diagonals_reflex(minus));
   const Prism& reflex = diagonals_reflex(plus) ? plus : minus;

@@ -17,6 +17,8 @@
 #include <volmap/predicates.hpp>
 #include <volmap/volume/kernel_lp.hpp>
 
+#include "flat_array_edit.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -1261,55 +1263,27 @@ ConeRepairResult cone_repair(TetMesh& source, PositionProperty& target, const Ve
 
 namespace {
 
-// Runs `repair` on a TetMesh built from flat arrays and writes the compacted result back (see the
-// flat-array cone_repair in cone_repair.hpp); the arrays stay as given when nothing was patched.
-template <class Repair>
-ConeRepairResult on_flat_arrays(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
-                                const char* who, Repair&& repair) {
-  const std::size_t nv = source.num_vertices();
-  if (source.tets.size() != 4 * source.num_tets() || locked.size() != nv || target_xyz.size() != source.xyz.size())
-    throw Error(ErrorKind::BadInput, "", 0, std::string(who) + ": inconsistent array sizes");
-  for (std::uint32_t v : source.tets)
-    if (v >= nv) throw Error(ErrorKind::BadInput, "", 0, std::string(who) + ": tet vertex id out of range");
-  TetMesh mesh(source);
-  PositionProperty target(mesh);
-  VertexProperty<std::uint8_t> locked_property(mesh);
-  for (std::size_t v = 0; v < nv; ++v) {
-    for (int i = 0; i < 3; ++i) target.data()[v][i] = target_xyz[3 * v + i];
-    locked_property.data()[v] = locked[v];
-  }
-  const ConeRepairResult res = repair(mesh, target, locked_property);
-  if (res.patches == 0) return res;  // nothing changed: the arrays stay as given
-  mesh.compact();  // keeps the original vertex ids: patches delete no vertex
-  const bool had_tet_labels = !source.tet_labels.empty(), had_vertex_labels = !source.vertex_labels.empty();
-  source = mesh.to_data();
-  if (!had_tet_labels) source.tet_labels.clear();
-  if (!had_vertex_labels) source.vertex_labels.clear();
-  target_xyz.resize(3 * source.num_vertices());
-  locked.resize(source.num_vertices());
-  for (std::size_t v = 0; v < source.num_vertices(); ++v) {
-    for (int i = 0; i < 3; ++i) target_xyz[3 * v + i] = target.data()[v][i];
-    locked[v] = locked_property.data()[v];
-  }
-  return res;
-}
+// The flat-array forms: patches delete no vertex, so compaction keeps every vertex id.
+bool patched(const ConeRepairResult& r) { return r.patches > 0; }
 
 }  // namespace
 
 ConeRepairResult cone_repair(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                              const ConeRepairOptions& options) {
-  return on_flat_arrays(source, locked, target_xyz, "cone_repair",
-                        [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
-                          return cone_repair(mesh, target, lock, options);
-                        });
+  return edit_on_flat_arrays(
+      source, locked, target_xyz, "cone_repair",
+      [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) { return cone_repair(mesh, target, lock, options); },
+      patched);
 }
 
 ConeRepairResult whole_mesh_cone(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                  double time_limit_seconds) {
-  return on_flat_arrays(source, locked, target_xyz, "whole_mesh_cone",
-                        [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
-                          return whole_mesh_cone(mesh, target, lock, time_limit_seconds);
-                        });
+  return edit_on_flat_arrays(
+      source, locked, target_xyz, "whole_mesh_cone",
+      [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>& lock) {
+        return whole_mesh_cone(mesh, target, lock, time_limit_seconds);
+      },
+      patched);
 }
 
 }  // namespace volmap

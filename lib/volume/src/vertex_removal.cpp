@@ -9,6 +9,8 @@
 #include <volmap/volume/chord_rules.hpp>
 #include <volmap/volume/steiner_free_fill.hpp>
 
+#include "flat_array_edit.hpp"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -111,31 +113,12 @@ VertexRemovalResult remove_added_vertices(TetMesh& mesh, PositionProperty& targe
 
 VertexRemovalResult remove_added_vertices(TetMeshData& source, std::vector<std::uint8_t>& locked, std::vector<double>& target_xyz,
                                           std::uint32_t first_removable, const VertexRemovalLimits& limits) {
-  const std::size_t nv = source.num_vertices();
-  if (source.tets.size() != 4 * source.num_tets() || locked.size() != nv || target_xyz.size() != source.xyz.size())
-    throw Error(ErrorKind::BadInput, "", 0, "remove_added_vertices: inconsistent array sizes");
-  TetMesh mesh(source);
-  PositionProperty target(mesh);
-  for (std::size_t v = 0; v < nv; ++v)
-    for (int i = 0; i < 3; ++i) target.data()[v][i] = target_xyz[3 * v + i];
-  const VertexRemovalResult res = remove_added_vertices(mesh, target, first_removable, limits);
-  if (res.removed == 0) return res;
-  const CompactRemap remap = mesh.compact();  // survivors keep their order: ids below first_removable stay
-  const bool had_tet_labels = !source.tet_labels.empty(), had_vertex_labels = !source.vertex_labels.empty();
-  std::vector<std::uint8_t> old_locked = std::move(locked);
-  source = mesh.to_data();
-  if (!had_tet_labels) source.tet_labels.clear();
-  if (!had_vertex_labels) source.vertex_labels.clear();
-  target_xyz.resize(3 * source.num_vertices());
-  locked.assign(source.num_vertices(), 0);
-  for (std::size_t old = 0; old < nv; ++old) {
-    const std::uint32_t v = remap.vertex_old_to_new[old];
-    if (v == kInvalidIndex) continue;
-    locked[v] = old_locked[old];
-  }
-  for (std::size_t v = 0; v < source.num_vertices(); ++v)
-    for (int i = 0; i < 3; ++i) target_xyz[3 * v + i] = target.data()[v][i];
-  return res;
+  return edit_on_flat_arrays(
+      source, locked, target_xyz, "remove_added_vertices",
+      [&](TetMesh& mesh, PositionProperty& target, const VertexProperty<std::uint8_t>&) {
+        return remove_added_vertices(mesh, target, first_removable, limits);
+      },
+      [](const VertexRemovalResult& r) { return r.removed > 0; });
 }
 
 }  // namespace volmap
