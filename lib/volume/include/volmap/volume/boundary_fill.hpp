@@ -6,15 +6,17 @@
 //   1. when the map fixes every vertex (all on ∂M): the input's own tets if all are positive at the
 //      images, else a fill on ∂M's own vertices;
 //   2. with a certified map: a fill with its interior vertices and the points it added as options;
-//   3. when the map fixes every vertex: one interior point at the centroid (in both spaces) of an
-//      input tet, each in turn, the non-positive ones first.
+//   3. when the map fixes every vertex: one interior point — first a strict kernel point of ∂M in
+//      each space when both exist (the cone from it over ∂M is then a fill of 2V − 4 tets, V the
+//      boundary vertices), then the centroid (in both spaces) of each input tet in turn, the
+//      non-positive ones first.
 // Each search runs as restarts with other tie-breaks and doubling node limits; a fill found bounds
 // every later search (only fewer tets are searched for).
 // Coarse CAD parts and Platonic solids, whose tets all touch ∂M, get a certified map with as many
 // tets as the input or a few more, where splits and cone patches added a third or more.
 // Conventions: a valid input and map (as compute_volume_map checks them); the result keeps the
 // input's vertex ids, the points it uses appended after them (in the certified map's order, or the
-// centroid point); tets VOLMAP-positive in both spaces; no tet labels unless the fill is the input's
+// interior point); tets VOLMAP-positive in both spaces; no tet labels unless the fill is the input's
 // own tets (vertex labels: 0 for added points).
 #pragma once
 
@@ -30,7 +32,7 @@ namespace volmap {
 struct BoundaryFillLimits {
   std::size_t max_nodes = 120000;           // tets tried, over all searches
   std::size_t max_nodes_per_search = 40000;  // tets tried by search 1 or 2 (over its restarts)
-  std::size_t max_nodes_per_point = 2000;   // tets tried with one centroid point (search 3)
+  std::size_t max_nodes_per_point = 2000;   // tets tried with one interior point (search 3)
   double time_limit_seconds = 0;           // 0 = none
 };
 

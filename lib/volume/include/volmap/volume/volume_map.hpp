@@ -140,11 +140,12 @@ struct VolumeMapOptions {
   // (docs/mapping.md §8 step 14). On inputs of at most boundary_fill_max_tets tets a new
   // tetrahedralisation of ∂M valid in both spaces with fewer tets is searched (boundary_fill.hpp:
   // on the input's vertices at the images the map or the certified map gives them, the certified
-  // map's added points optional, or one interior point at a tet centroid) and replaces the result
-  // (certified_by "boundary-fill", stage "boundary-fill"); then, on a certified result of any size,
-  // the vertices refinement added whose link has a fill with fewer tets valid in both spaces are
-  // taken back (vertex_removal.hpp, stage "vertex-removal"), and a small input whose removals took
-  // tets back gets the fill search again. Every change is kept only when check_map certifies it.
+  // map's added points optional, or one interior point in ∂M's kernels or at a tet centroid) and
+  // replaces the result (certified_by "boundary-fill", stage "boundary-fill"); then, on a certified
+  // result of any size, the vertices refinement added whose link has a fill with fewer tets valid in
+  // both spaces are taken back (vertex_removal.hpp, stage "vertex-removal"), and a small input whose
+  // removals took tets back gets the fill search again. Every change is kept only when check_map
+  // certifies it.
   bool fewer_tets = true;
   std::size_t boundary_fill_max_tets = 2000;
   // Starting map instead of Tutte 3D: 3 doubles per INPUT vertex (possibly tangled). Its boundary
