@@ -1,10 +1,10 @@
-// The boundary fill of §8 step 14 (boundary_fill.hpp) on a real coarse CAD part: the 7-connected
-// polycube of shared/data (seven cubes in a 3D cross), tetrahedralised by TetGen without quality
-// refinement (every vertex on ∂M) and mapped onto the tetrahedron. Oracle: the cross is star-shaped
-// about its centre and the tetrahedron is convex, so the cone from one interior point over the
-// boundary's 2V − 4 triangles (V boundary vertices) is a fill valid in both spaces; the fill must
-// have at most that many tets (V = 20 here: 36). Searching only the tet centroids' points, the fill
-// without a certified map found none, and the mapper ended at 38 tets.
+// The boundary fill of docs/mapping.md §8 step 14 (boundary_fill.hpp) on a real coarse CAD part:
+// the 7-connected polycube of shared/data (seven cubes in a 3D cross), tetrahedralised by TetGen
+// without quality refinement (every vertex on ∂M) and mapped onto the tetrahedron. Oracle: the
+// cross is star-shaped about its centre and the tetrahedron is convex, so the cone from one interior
+// point over the boundary's 2V − 4 triangles (V boundary vertices) is a fill valid in both spaces;
+// the fill must have at most that many tets (V = 20 here: 36). Searching only the tet centroids'
+// points, the fill without a certified map found none, and the mapper ended at 38 tets.
 #include <doctest/doctest.h>
 #include <volmap/check/map_check.hpp>
 #include <volmap/surface/domain.hpp>
