@@ -14,7 +14,7 @@
 
 #include "test_support.hpp"
 
-#include <cstdint>
+#include <cstddef>
 #include <limits>
 
 TEST_CASE("boundary fill: the coarse 7-connected polycube onto the tetrahedron has at most the cone's 2V - 4 tets") {

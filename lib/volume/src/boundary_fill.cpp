@@ -5,7 +5,7 @@
 #include <volmap/core/boundary_faces.hpp>
 #include <volmap/core/time_budget.hpp>
 #include <volmap/predicates.hpp>
-#include <volmap/volume/kernel_lp.hpp>
+#include <volmap/volume/star_shaped_boundary.hpp>
 #include <volmap/volume/steiner_free_fill.hpp>
 
 #include <algorithm>
@@ -29,7 +29,7 @@ struct SearchSpace {
 class FillSearches {
  public:
   FillSearches(const TetMeshData& input, const BoundaryMap& map, std::size_t must_beat, const BoundaryFillLimits& limits)
-      : input_(input), limits_(limits), clock_(limits.time_limit_seconds), bound_(must_beat) {
+      : input_(input), map_(map), limits_(limits), clock_(limits.time_limit_seconds), bound_(must_beat) {
     for (std::uint64_t hf : boundary_half_faces(input)) faces_.push_back(half_face_vertices(input, hf));
     on_boundary_.assign(input.num_vertices(), 0);
     for (const auto& f : faces_)
@@ -54,6 +54,7 @@ class FillSearches {
 
  private:
   const TetMeshData& input_;
+  const BoundaryMap& map_;
   BoundaryFillLimits limits_;
   TimeBudget clock_;
   std::size_t bound_;  // a fill must have fewer tets
@@ -150,17 +151,8 @@ class FillSearches {
   // from them over every boundary face is then a fill valid in both spaces, so this search has a
   // fill of 2V − 4 tets to start from (V boundary vertices) and looks for fewer.
   void with_kernel_points() {
-    std::vector<double> source_faces, image_faces;
-    source_faces.reserve(9 * faces_.size());
-    image_faces.reserve(9 * faces_.size());
-    for (const auto& f : faces_)
-      for (std::uint32_t v : f)
-        for (int k = 0; k < 3; ++k) {
-          source_faces.push_back(input_.xyz[3 * std::size_t(v) + k]);
-          image_faces.push_back(fixed_[3 * std::size_t(v) + k]);
-        }
     double p[3], q[3];
-    if (!strict_kernel_point(source_faces, p) || !strict_kernel_point(image_faces, q)) return;
+    if (!boundary_kernel_points(input_, map_, p, q)) return;
     const std::size_t n = input_.num_vertices();
     SearchSpace space{input_.xyz, fixed_, {}, {std::uint32_t(n)}};
     space.source.insert(space.source.end(), p, p + 3);

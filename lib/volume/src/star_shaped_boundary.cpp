@@ -32,6 +32,11 @@ bool map_positions(const TetMeshData& source, const BoundaryMap& map, std::vecto
 }  // namespace
 
 bool boundary_star_shaped_in_both_spaces(const TetMeshData& source, const BoundaryMap& map) {
+  double p[3], q[3];
+  return boundary_kernel_points(source, map, p, q);
+}
+
+bool boundary_kernel_points(const TetMeshData& source, const BoundaryMap& map, double* source_point, double* image_point) {
   std::vector<double> image;
   std::vector<bool> prescribed;
   if (!map_positions(source, map, image, prescribed)) return false;
@@ -53,8 +58,7 @@ bool boundary_star_shaped_in_both_spaces(const TetMeshData& source, const Bounda
         in_image.push_back(image[3 * v + d]);
       }
     }
-  double p[3], q[3];
-  return strict_kernel_point(in_image, q) && strict_kernel_point(in_source, p);
+  return strict_kernel_point(in_image, image_point) && strict_kernel_point(in_source, source_point);
 }
 
 }  // namespace volmap

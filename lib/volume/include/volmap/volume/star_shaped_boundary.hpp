@@ -16,4 +16,9 @@ namespace volmap {
 // when either kernel has no verified strict point.
 bool boundary_star_shaped_in_both_spaces(const TetMeshData& source, const BoundaryMap& map);
 
+// The same test, keeping the two verified points: source_point (3 doubles) strictly inside ∂M's
+// kernel in the source, image_point in the kernel of its image. False (points unspecified) in the
+// cases above.
+bool boundary_kernel_points(const TetMeshData& source, const BoundaryMap& map, double* source_point, double* image_point);
+
 }  // namespace volmap
