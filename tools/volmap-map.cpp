@@ -24,8 +24,8 @@
 // the runs from the input get half the time limit, an uncertified result the remeshed source with the rest.
 // When the boundary is star-shaped in both spaces, an uncertified result becomes one cone patch over the
 // whole boundary (§8 step 12; --no-whole-cone: never): certified, of poor quality. A result that grew
-// the mesh then gets fewer tets where a new fill valid in both spaces has fewer (§8 step 14;
-// --no-fewer-tets: never).
+// the mesh then gets fewer tets where a new fill valid in both spaces has fewer, and loses the
+// degree-3 interior edges whose 3-2 flip is valid in both spaces (§8 step 14; --no-fewer-tets: never).
 // All outputs are prepared before the run (paths distinct from every input and from each other)
 // and committed together. Certification: the written files are read back and check_map (exact
 // orient3d, boundary bit-identical to the map, input positive) runs on exactly those numbers.
@@ -94,7 +94,8 @@ void add_options(CLI::App& app, Args& a) {
   app.add_flag("--no-fewer-tets", a.no_fewer_tets,
                "refinement: keep the runs' result as it is (default: when it grew the mesh, vertices the refinement added are "
                "taken back where a fill of their link valid in both spaces has fewer tets, and on inputs of at most 2000 tets "
-               "the whole boundary is re-filled when that has fewer tets; every change re-checked exactly)");
+               "the whole boundary is re-filled when that has fewer tets, then interior edges of degree 3 are flipped 3-2 where both "
+               "new tets are positive in both spaces; every change re-checked exactly)");
   app.add_option("--remesh-quality", a.remesh_quality, "refinement: TetGen radius-edge bound of the interior remesh (default 3)")
       ->check(volmap_tools::finite_range(1.0, 1e6));
   app.add_flag("--no-quality", a.no_quality, "skip the validity-preserving quality pass");

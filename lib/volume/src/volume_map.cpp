@@ -16,6 +16,7 @@
 #include <volmap/volume/map_stages.hpp>
 #include <volmap/volume/star_shaped_boundary.hpp>
 #include <volmap/volume/vertex_removal.hpp>
+#include <volmap/volume/edge_removal_fewer_tets.hpp>
 
 #include <tbb/global_control.h>
 
@@ -835,6 +836,21 @@ VolumeMapResult with_added_vertices_removed(VolumeMapResult r, const TetMeshData
   });
 }
 
+// Step 14c: interior edges of degree 3 whose two ring tets are positive in both spaces are
+// flipped 3-2 (edge_removal_fewer_tets.hpp); kept when check_map certifies the result exactly.
+// Stage "edge-removal" either way.
+VolumeMapResult with_degree3_edges_removed(VolumeMapResult r, const BoundaryMap& map, const TimeBudget& total) {
+  const std::string certifier = r.certified_by;
+  return with_certified_edit(std::move(r), map, total, "edge-removal", certifier, [&](const VolumeMapResult& run) {
+    ArraysEdit e{run.source, run.target_xyz, run.locked, ""};
+    EdgeRemovalLimits limits;
+    limits.time_limit_seconds = fill_seconds(total);
+    if (remove_degree3_edges(e.source, e.locked, e.target_xyz, limits).flips == 0)
+      e.refusal = "no interior edge of degree 3 has a 3-2 flip valid in both spaces";
+    return e;
+  });
+}
+
 // Step 14 on the result of steps 1–12, when it grew the input or is uncertified. The fill searches
 // are heuristic: fewer points (after removals) can make one succeed that failed before, and the
 // other way round, so a small input gets a fill before and after the removals.
@@ -850,6 +866,7 @@ VolumeMapResult with_fewer_tets(VolumeMapResult r, const TetMeshData& input, con
   const std::size_t before = r.source.num_tets();
   r = with_added_vertices_removed(std::move(r), input, map, total);
   if (grew_or_failed() && small && r.source.num_tets() < before) r = with_boundary_fill(std::move(r), input, map, total);
+  if (grew_or_failed()) r = with_degree3_edges_removed(std::move(r), map, total);
   return r;
 }
 

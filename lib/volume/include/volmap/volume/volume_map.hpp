@@ -144,7 +144,9 @@ struct VolumeMapOptions {
   // replaces the result (certified_by "boundary-fill", stage "boundary-fill"); then, on a certified
   // result of any size, the vertices refinement added whose link has a fill with fewer tets valid in
   // both spaces are taken back (vertex_removal.hpp, stage "vertex-removal"), and a small input whose
-  // removals took tets back gets the fill search again. Every change is kept only when check_map
+  // removals took tets back gets the fill search again; last, a certified result that still grew
+  // loses the interior edges of degree 3 whose 3-2 flip is valid in both spaces
+  // (edge_removal_fewer_tets.hpp, stage "edge-removal"). Every change is kept only when check_map
   // certifies it.
   bool fewer_tets = true;
   std::size_t boundary_fill_max_tets = 2000;
