@@ -159,6 +159,11 @@ TetMeshData TetMesh::to_data() const {
 // ---- navigation helpers ---------------------------------------------------------------------
 
 void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
+  vertex_star_unsorted(v, out);
+  std::sort(out.begin(), out.end());
+}
+
+void TetMesh::vertex_star_unsorted(VertexId v, std::vector<TetId>& out) const {
   out.clear();
   const std::uint32_t h0 = v2h_[v.idx()];
   if (h0 == kNone) return;
@@ -196,21 +201,20 @@ void TetMesh::vertex_star(VertexId v, std::vector<TetId>& out) const {
       }
     }
   }
-  std::sort(out.begin(), out.end());
 }
 
+// The tet of smallest id holding both (the first of the sorted star), found without sorting it.
 TetId TetMesh::find_edge(VertexId va, VertexId vb, int* local_a, int* local_b) const {
   thread_local std::vector<TetId> star;
-  vertex_star(va, star);
-  for (TetId t : star) {
-    const int lb = tet_local_index(t, vb);
-    if (lb >= 0) {
-      if (local_a) *local_a = tet_local_index(t, va);
-      if (local_b) *local_b = lb;
-      return t;
-    }
+  vertex_star_unsorted(va, star);
+  TetId found = TetId::kInvalid;
+  for (TetId t : star)
+    if ((!found.is_valid() || t.idx() < found.idx()) && tet_local_index(t, vb) >= 0) found = t;
+  if (found.is_valid()) {
+    if (local_a) *local_a = tet_local_index(found, va);
+    if (local_b) *local_b = tet_local_index(found, vb);
   }
-  return TetId::kInvalid;
+  return found;
 }
 
 // ---- caches ---------------------------------------------------------------------------------
@@ -657,7 +661,7 @@ bool TetMesh::can_flip_3_2(TetId t, int a, int b, const double* xyz) const {
   for (int i = 0; i < 4; ++i)
     if (i != a && i != b) (cx < 0 ? cx : cy) = i;
   thread_local std::vector<TetId> star;
-  vertex_star(VertexId(p[cx]), star);
+  vertex_star_unsorted(VertexId(p[cx]), star);
   for (TetId s : star)
     if (tet_local_index(s, VertexId(p[cy])) >= 0 && tet_local_index(s, VertexId(z)) >= 0) return false;
   if (!xyz) xyz = xyz_.data();
@@ -691,7 +695,7 @@ std::array<TetId, 2> TetMesh::flip_3_2(TetId t, int a, int b) {
     if (i != a && i != b) (cx < 0 ? cx : cy) = i;
   {
     thread_local std::vector<TetId> star;
-    vertex_star(VertexId(p[cx]), star);
+    vertex_star_unsorted(VertexId(p[cx]), star);
     for (TetId s : star)
       if (tet_local_index(s, VertexId(p[cy])) >= 0 && tet_local_index(s, VertexId(z)) >= 0)
         failed("flip_3_2: triangle " + triple(p[cx], p[cy], z) + " already exists");

@@ -178,7 +178,7 @@ class CavityPlan {
     std::map<std::uint32_t, std::vector<TetId>> stars;  // each vertex's star walked once
     auto star_of = [&](std::uint32_t v) -> const std::vector<TetId>& {
       auto [it, added] = stars.try_emplace(v);
-      if (added) mesh_.vertex_star(VertexId(v), it->second);
+      if (added) mesh_.vertex_star_unsorted(VertexId(v), it->second);
       return it->second;
     };
     for (const auto& glue : glued) {

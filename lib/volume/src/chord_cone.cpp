@@ -33,8 +33,10 @@ struct ConePlan {
   long long cost() const { return (long long)faces.size() - (long long)region.size(); }
 };
 
-// Plans the cone over `region` (sorted); false when it is not admissible.
-bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
+// Plans the cone over `region` (sorted); false when it is not admissible or would cost more than
+// max_cost (checked before the kernel LP, the costly part).
+bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan,
+               long long max_cost = std::numeric_limits<long long>::max()) {
   plan.region = std::move(region);
   plan.faces.clear();
   plan.parents.clear();
@@ -56,6 +58,7 @@ bool plan_cone(const TetMesh& mesh, std::vector<TetId> region, ConePlan& plan) {
   }
   std::sort(on_boundary.begin(), on_boundary.end());
   on_boundary.erase(std::unique(on_boundary.begin(), on_boundary.end()), on_boundary.end());
+  if (plan.cost() > max_cost) return false;
   for (TetId t : plan.region)  // a vertex strictly inside R would be lost
     for (VertexId x : mesh.tet_vertices(t))
       if (!std::binary_search(on_boundary.begin(), on_boundary.end(), x.idx())) return false;
@@ -100,7 +103,7 @@ std::vector<TetId> merged(const std::vector<TetId>& a, const std::vector<TetId>&
 std::size_t boundary_faces_at(const TetMesh& mesh, std::uint32_t v) {
   if (!mesh.vertex_is_boundary(VertexId(v))) return 0;
   thread_local std::vector<TetId> star;
-  mesh.vertex_star(VertexId(v), star);
+  mesh.vertex_star_unsorted(VertexId(v), star);
   std::size_t n = 0;
   for (TetId t : star)
     for (int i = 0; i < 4; ++i)
@@ -156,7 +159,7 @@ bool cone_region(TetMesh& mesh, std::uint32_t seed, const PendingChordsAt& chord
     if (next == kInvalidIndex) break;
     std::vector<TetId> grown = merged(best.region, star_of(mesh, next));
     ConePlan plan;
-    if (grown.size() > limits.max_tets || !plan_cone(mesh, std::move(grown), plan) || plan.cost() - best.cost() > next_gain) {
+    if (grown.size() > limits.max_tets || !plan_cone(mesh, std::move(grown), plan, best.cost() + next_gain)) {
       refused.insert(next);
       continue;
     }

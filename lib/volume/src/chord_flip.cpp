@@ -69,19 +69,26 @@ class RingTriangulator {
     floor_ = shape_floor(ring_worst);
   }
 
-  // The triangles of the best admissible triangulation, or empty when there is none.
+  // The triangles of the best admissible triangulation, or empty when there is none. Most rings
+  // have none whatever their diagonals, so the search runs first without the test that a diagonal
+  // is not an edge yet (a star walk per ring vertex): it only removes diagonals, so no triangulation
+  // without it means none with it.
   std::vector<std::array<int, 3>> solve() {
-    return volume_detail::best_polygon_triangulation(
-        n_, [this](int i, int k, int j) { return triangle(i, k, j); }, [this](int i, int j) { return admissible_diagonal(i, j); });
+    const auto triangle_score = [this](int i, int k, int j) { return triangle(i, k, j); };
+    if (volume_detail::best_polygon_triangulation(n_, triangle_score, [this](int i, int j) { return unblocked_diagonal(i, j); })
+            .empty())
+      return {};
+    return volume_detail::best_polygon_triangulation(n_, triangle_score, [this](int i, int j) { return admissible_diagonal(i, j); });
   }
 
  private:
-  // The new edge (ring[i], ring[j]) and the faces with va and vb: not blocking, not an edge yet.
-  bool admissible_diagonal(int i, int j) {
+  // The new edge (ring[i], ring[j]) and the faces with va and vb are not blocking.
+  bool unblocked_diagonal(int i, int j) const {
     const std::uint32_t x = r_[i], y = r_[j];
-    if (rules_.edge_blocks(x, y) || rules_.face_image_blocks(va_, x, y) || rules_.face_image_blocks(vb_, x, y)) return false;
-    return !(ring_neighbours(i) & (1u << j));
+    return !rules_.edge_blocks(x, y) && !rules_.face_image_blocks(va_, x, y) && !rules_.face_image_blocks(vb_, x, y);
   }
+  // ... and the edge is not in the mesh yet.
+  bool admissible_diagonal(int i, int j) { return unblocked_diagonal(i, j) && !(ring_neighbours(i) & (1u << j)); }
 
   // Bit j set iff ring[j] shares a tet with ring[i] (one star walk per ring vertex, on demand; the
   // ring has at most 31 vertices, see remove_chord_edge).
@@ -89,7 +96,7 @@ class RingTriangulator {
     std::uint32_t& mask = neighbours_[std::size_t(i)];
     if (mask & kKnown) return mask;
     mask = kKnown;
-    mesh_.vertex_star(VertexId(r_[i]), star_);
+    mesh_.vertex_star_unsorted(VertexId(r_[i]), star_);
     for (TetId s : star_)
       for (VertexId v : mesh_.tet_vertices(s))
         if (const int p = position(v.idx()); p < n_) mask |= 1u << p;

@@ -151,6 +151,8 @@ class TetMesh {
   // vertex, whose tets are not connected through faces containing v, this is only the cluster
   // holding v2h[v]; vertex_tets(v) (cache) lists all tets containing v.
   void vertex_star(VertexId v, std::vector<TetId>& out) const;
+  // The same tets in walk order (no sort): for membership tests, where the order does not matter.
+  void vertex_star_unsorted(VertexId v, std::vector<TetId>& out) const;
 
   // ---- raw arrays (read-only; layout in the convention block) -------------------------------
   const std::vector<std::uint32_t>& tet_vertex_array() const { return tv_; }
