@@ -308,7 +308,22 @@ TEST_CASE("vertex stars: with and without the cache, vs brute force") {
   for (std::uint32_t v = 0; v < m.num_vertices(); ++v) {
     m.vertex_star(VertexId(v), star);  // face-walk path
     CHECK(star == brute[v]);
+    m.vertex_star_unsorted(VertexId(v), star);  // the same tets, each once, in walk order
+    std::sort(star.begin(), star.end());
+    CHECK(star == brute[v]);
   }
+  for (std::uint32_t v = 0; v < m.num_vertices(); ++v)  // find_edge: the smallest tet holding both
+    for (TetId t : brute[v])
+      for (VertexId w : m.tet_vertices(t)) {
+        if (w.idx() == v) continue;
+        TetId smallest = TetId::kInvalid;
+        for (TetId s : brute[v])
+          if (m.tet_local_index(s, w) >= 0) { smallest = s; break; }
+        int la = -1, lb = -1;
+        CHECK(m.find_edge(VertexId(v), w, &la, &lb) == smallest);
+        CHECK(m.tet_vertex(smallest, la).idx() == v);
+        CHECK(m.tet_vertex(smallest, lb) == w);
+      }
   m.build_caches();
   CHECK(m.vertex_tets_cache_current());
   CHECK(m.edge_cache_current());
