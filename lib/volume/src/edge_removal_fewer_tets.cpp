@@ -1,7 +1,9 @@
 // edge_removal_fewer_tets.cpp — docs/mapping.md §8 step 14c (conventions in
-// edge_removal_fewer_tets.hpp). TetMesh::can_flip_3_2 decides the topology and the exact source
-// signs; the map's signs and the shape bound are checked here on the same two new tets (t with vb
-// replaced by z, t with va replaced by z; z the ring vertex t lacks).
+// edge_removal_fewer_tets.hpp). TetMesh::can_flip_3_2 decides the topology and the exact signs,
+// once on the source and once on the map's positions (the PositionProperty's 3 doubles per vertex
+// slot, contiguous); the shape bound is checked here on the same two new tets (t with vb replaced
+// by z, t with va replaced by z; z the ring vertex t lacks). A flip adds no vertex, so the
+// property's storage never moves.
 #include <volmap/volume/edge_removal_fewer_tets.hpp>
 
 #include <volmap/core/time_budget.hpp>
