@@ -1,9 +1,7 @@
 // edge_removal_fewer_tets.cpp — docs/mapping.md §8 step 14c (conventions in
-// edge_removal_fewer_tets.hpp). TetMesh::can_flip_3_2 decides the topology and the exact signs,
-// once on the source and once on the map's positions (the PositionProperty's 3 doubles per vertex
-// slot, contiguous); the shape bound is checked here on the same two new tets (t with vb replaced
-// by z, t with va replaced by z; z the ring vertex t lacks). A flip adds no vertex, so the
-// property's storage never moves.
+// edge_removal_fewer_tets.hpp). TetMesh::can_flip_3_2 decides the topology and the exact source
+// signs; the map's signs (exact) and the shape bound are checked here on the same two new tets:
+// t with vb replaced by z and t with va replaced by z, z the ring vertex t lacks.
 #include <volmap/volume/edge_removal_fewer_tets.hpp>
 
 #include <volmap/core/time_budget.hpp>
@@ -22,8 +20,7 @@ namespace {
 
 class DegreeThreeFlips {
  public:
-  DegreeThreeFlips(TetMesh& mesh, const PositionProperty& target)
-      : mesh_(mesh), target_(target), target_xyz_(target.data().front().data()) {}
+  DegreeThreeFlips(TetMesh& mesh, const PositionProperty& target) : mesh_(mesh), target_(target) {}
 
   // Flips the first admissible degree-3 interior edge of t; true when one was flipped.
   bool flip_an_edge(TetId t) {
@@ -46,9 +43,12 @@ class DegreeThreeFlips {
     return std::min(tet_shape(s[0], s[1], s[2], s[3]), tet_shape(g[0], g[1], g[2], g[3]));
   }
 
+  bool positive_in_map(const std::array<VertexId, 4>& v) const {
+    return fp_.orient3d(target_[v[0]].data(), target_[v[1]].data(), target_[v[2]].data(), target_[v[3]].data()) > 0;
+  }
+
   bool admissible(TetId t, int a, int b) const {
-    // Topology, degree 3 and both source signs; then both map signs (exact).
-    if (!mesh_.can_flip_3_2(t, a, b) || !mesh_.can_flip_3_2(t, a, b, target_xyz_)) return false;
+    if (!mesh_.can_flip_3_2(t, a, b)) return false;  // topology, degree 3, both source signs
     double worst = std::numeric_limits<double>::infinity();
     VertexId z;
     const auto tv = mesh_.tet_vertices(t);
@@ -60,22 +60,20 @@ class DegreeThreeFlips {
     std::array<VertexId, 4> lower = tv, upper = tv;
     lower[std::size_t(b)] = z;
     upper[std::size_t(a)] = z;
-    return std::min(shape(lower), shape(upper)) >= kFixShapeRatio * worst;
+    return positive_in_map(lower) && positive_in_map(upper) && std::min(shape(lower), shape(upper)) >= kFixShapeRatio * worst;
   }
 
   TetMesh& mesh_;
   const PositionProperty& target_;
-  const double* target_xyz_;
+  const FpEnvironmentScope fp_;
 };
 
 }  // namespace
 
 EdgeRemovalResult remove_degree3_edges(TetMesh& mesh, const PositionProperty& target, const EdgeRemovalLimits& limits) {
   const TimeBudget clock(limits.time_limit_seconds);
-  const FpEnvironmentScope fp;
   EdgeRemovalResult res;
   res.tets_before = mesh.num_tets();
-  if (mesh.num_vertex_slots() == 0) return res;
   DegreeThreeFlips flips(mesh, target);
   for (int pass = 0; pass < limits.passes && !clock.expired(); ++pass) {
     const std::size_t before = res.flips;

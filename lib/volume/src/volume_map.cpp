@@ -821,34 +821,42 @@ VolumeMapResult with_boundary_fill(VolumeMapResult r, const TetMeshData& input, 
   });
 }
 
-// Step 14b: the vertices refinement added (ids from the input's vertex count on) whose link has a
-// fill with fewer tets, valid in both spaces, are taken back (vertex_removal.hpp); kept when
-// check_map certifies the result exactly. Stage "vertex-removal" either way.
-VolumeMapResult with_added_vertices_removed(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
+// Steps 14b and 14c: an edit of the certified result's arrays that only takes tets out, given the
+// stage's share of the limit; `take_out` returns false when it changed nothing, and `refusal` is
+// the stage's failure then. Kept when check_map certifies the result exactly (certified_by stays).
+template <class TakeOut>
+VolumeMapResult with_tets_taken_out(VolumeMapResult r, const BoundaryMap& map, const TimeBudget& total, const std::string& stage,
+                                    const std::string& refusal, TakeOut take_out) {
   const std::string certifier = r.certified_by;
-  return with_certified_edit(std::move(r), map, total, "vertex-removal", certifier, [&](const VolumeMapResult& run) {
+  return with_certified_edit(std::move(r), map, total, stage, certifier, [&](const VolumeMapResult& run) {
     ArraysEdit e{run.source, run.target_xyz, run.locked, ""};
-    VertexRemovalLimits limits;
-    limits.time_limit_seconds = fill_seconds(total);
-    if (remove_added_vertices(e.source, e.locked, e.target_xyz, std::uint32_t(input.num_vertices()), limits).removed == 0)
-      e.refusal = "no added vertex has a fill of its link with fewer tets";
+    if (!take_out(e, fill_seconds(total))) e.refusal = refusal;
     return e;
   });
 }
 
+// Step 14b: the vertices refinement added (ids from the input's vertex count on) whose link has a
+// fill with fewer tets, valid in both spaces, are taken back (vertex_removal.hpp). Stage
+// "vertex-removal".
+VolumeMapResult with_added_vertices_removed(VolumeMapResult r, const TetMeshData& input, const BoundaryMap& map, const TimeBudget& total) {
+  return with_tets_taken_out(std::move(r), map, total, "vertex-removal", "no added vertex has a fill of its link with fewer tets",
+                             [&](ArraysEdit& e, double seconds) {
+                               VertexRemovalLimits limits;
+                               limits.time_limit_seconds = seconds;
+                               const auto first_added = std::uint32_t(input.num_vertices());
+                               return remove_added_vertices(e.source, e.locked, e.target_xyz, first_added, limits).removed > 0;
+                             });
+}
+
 // Step 14c: interior edges of degree 3 whose two ring tets are positive in both spaces are
-// flipped 3-2 (edge_removal_fewer_tets.hpp); kept when check_map certifies the result exactly.
-// Stage "edge-removal" either way.
+// flipped 3-2 (edge_removal_fewer_tets.hpp). Stage "edge-removal".
 VolumeMapResult with_degree3_edges_removed(VolumeMapResult r, const BoundaryMap& map, const TimeBudget& total) {
-  const std::string certifier = r.certified_by;
-  return with_certified_edit(std::move(r), map, total, "edge-removal", certifier, [&](const VolumeMapResult& run) {
-    ArraysEdit e{run.source, run.target_xyz, run.locked, ""};
-    EdgeRemovalLimits limits;
-    limits.time_limit_seconds = fill_seconds(total);
-    if (remove_degree3_edges(e.source, e.locked, e.target_xyz, limits).flips == 0)
-      e.refusal = "no interior edge of degree 3 has a 3-2 flip valid in both spaces";
-    return e;
-  });
+  return with_tets_taken_out(std::move(r), map, total, "edge-removal", "no interior edge of degree 3 has a 3-2 flip valid in both spaces",
+                             [](ArraysEdit& e, double seconds) {
+                               EdgeRemovalLimits limits;
+                               limits.time_limit_seconds = seconds;
+                               return remove_degree3_edges(e.source, e.locked, e.target_xyz, limits).flips > 0;
+                             });
 }
 
 // Step 14 on the result of steps 1–12, when it grew the input or is uncertified. The fill searches
